@@ -1,0 +1,10 @@
+//! layertrace: bitmap to SVG with exact curves, by Digital Level Layers.
+//!
+//! Implements *Digital Level Layers for Digital Curve Decomposition and Vectorization*
+//! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014).
+
+mod error;
+mod pixel;
+
+pub use error::Error;
+pub use pixel::Pixel;

@@ -1,0 +1,2 @@
+//! The `layertrace` command-line tool.
+fn main() {}

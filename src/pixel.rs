@@ -1,0 +1,54 @@
+//! Integer pixel coordinates.
+
+/// A pixel of a bitmap: `x` is the column, `y` the row, `(0, 0)` is the top-left pixel.
+///
+/// In SVG space the pixel is the unit square `[x, x+1] × [y, y+1]` and its centre is
+/// `(x + 0.5, y + 0.5)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
+pub struct Pixel {
+    /// Column, growing to the right.
+    pub x: i32,
+    /// Row, growing downwards.
+    pub y: i32,
+}
+
+impl Pixel {
+    /// The pixel at column `x`, row `y`.
+    #[inline]
+    pub const fn new(x: i32, y: i32) -> Pixel {
+        Pixel { x, y }
+    }
+
+    /// The four 4-neighbours, in the order right, down, left, up (clockwise on screen).
+    #[inline]
+    pub fn neighbours4(self) -> [Pixel; 4] {
+        [
+            Pixel::new(self.x + 1, self.y),
+            Pixel::new(self.x, self.y + 1),
+            Pixel::new(self.x - 1, self.y),
+            Pixel::new(self.x, self.y - 1),
+        ]
+    }
+
+    /// True when `other` is one of the eight neighbours of `self` (not `self` itself).
+    #[inline]
+    pub fn is_8_adjacent(self, other: Pixel) -> bool {
+        let dx = (self.x - other.x).abs();
+        let dy = (self.y - other.y).abs();
+        dx <= 1 && dy <= 1 && (dx, dy) != (0, 0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn adjacency() {
+        let p = Pixel::new(3, 4);
+        assert!(p.neighbours4().iter().all(|&q| p.is_8_adjacent(q)));
+        assert!(p.is_8_adjacent(Pixel::new(4, 5)));
+        assert!(!p.is_8_adjacent(p));
+        assert!(!p.is_8_adjacent(Pixel::new(5, 4)));
+    }
+}
