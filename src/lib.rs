@@ -4,7 +4,11 @@
 //! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014).
 
 mod error;
+mod model;
 mod pixel;
+mod recognize;
 
 pub use error::Error;
+pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use pixel::Pixel;
+pub use recognize::{recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness};

@@ -1,0 +1,256 @@
+//! Exact checks: certificates in integers, witnesses in rationals, and the exact fallback.
+//!
+//! Every answer of the recognizer passes through here:
+//! * "described" only with an integer vector `a` for which `max_{S⁻} a·F < min_S a·F` and
+//!   `max_S a·F < min_{S⁺} a·F` hold in `i128` arithmetic (every product and sum is
+//!   overflow-checked: an overflow rejects the candidate, it never wraps);
+//! * "not described" only with points `d_1, …, d_k` of `D` and rational weights
+//!   `λ_i ≥ 0`, `Σ λ_i = 1`, `Σ λ_i d_i = 0`, computed in exact rational arithmetic.
+
+use super::gjk::{gjk, GjkOutcome, GjkParams};
+use super::scalar::Scalar;
+use super::simplex::Simplex;
+use super::support::{integer_direction, ExactSupport, ListSupport, Sets, SupportMap, Tag};
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive, Zero};
+
+/// `a·f` in `i128`, or `None` on overflow.
+#[inline]
+pub(crate) fn dot_i128(a: &[i64], f: &[i64]) -> Option<i128> {
+    let mut s: i128 = 0;
+    for (&x, &y) in a.iter().zip(f) {
+        s = s.checked_add((x as i128).checked_mul(y as i128)?)?;
+    }
+    Some(s)
+}
+
+/// The exact values of a certificate on the three sets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Extremes {
+    /// `min_S a·F`.
+    pub lower: i128,
+    /// `max_S a·F`.
+    pub upper: i128,
+    /// `min_{S⁺} a·F`, if `S⁺` is not empty.
+    pub above: Option<i128>,
+    /// `max_{S⁻} a·F`, if `S⁻` is not empty.
+    pub below: Option<i128>,
+}
+
+impl Extremes {
+    /// True when the layer `[lower, upper]` strictly separates the outliers.
+    pub fn separates(&self) -> bool {
+        self.above.is_none_or(|v| v > self.upper) && self.below.is_none_or(|v| v < self.lower)
+    }
+}
+
+/// Checks the integer direction `a` exactly on the three sets. Returns the extremes when it
+/// separates, `None` when it does not (or on overflow); stops at the first violation.
+pub(crate) fn verify_certificate(sets: &Sets<'_>, a: &[i64]) -> Option<Extremes> {
+    let mut rows = sets.inliers.lifted_rows();
+    let first = dot_i128(a, rows.next()?)?;
+    let (mut lower, mut upper) = (first, first);
+    for row in rows {
+        let v = dot_i128(a, row)?;
+        lower = lower.min(v);
+        upper = upper.max(v);
+    }
+    let mut above = None::<i128>;
+    for row in sets.upper.lifted_rows() {
+        let v = dot_i128(a, row)?;
+        if v <= upper {
+            return None;
+        }
+        above = Some(above.map_or(v, |m| m.min(v)));
+    }
+    let mut below = None::<i128>;
+    for row in sets.lower.lifted_rows() {
+        let v = dot_i128(a, row)?;
+        if v >= lower {
+            return None;
+        }
+        below = Some(below.map_or(v, |m| m.max(v)));
+    }
+    Some(Extremes {
+        lower,
+        upper,
+        above,
+        below,
+    })
+}
+
+/// Rounds the float direction `y` (unscaled coordinates) to integer directions at growing
+/// scales and returns the first one that verifies exactly.
+///
+/// `margin` is the computed `min_{d∈D} y·d > 0` and `max_abs[i]` bounds `|F_i|` over the
+/// sets: rounding `t·y` moves each `a·d` by at most `Σ_i max_abs[i]`, so a scale
+/// `t > Σ max_abs / margin` is guaranteed to work when the float margin is right; the
+/// ladder starts a few powers of two below that to find smaller integers.
+pub(crate) fn round_to_certificate(
+    sets: &Sets<'_>,
+    y: &[f64],
+    margin: f64,
+    max_abs: &[i64],
+) -> Option<(Vec<i64>, Extremes)> {
+    let ymax = y.iter().fold(0.0f64, |m, v| m.max(f64::abs(*v)));
+    if ymax.is_nan() || ymax <= 0.0 || !ymax.is_finite() || margin.is_nan() || margin <= 0.0 {
+        return None;
+    }
+    let err: f64 = max_abs.iter().map(|&m| m as f64).sum::<f64>().max(1.0);
+    // Scale at which the largest coefficient is 2^k.
+    let needed = (err / margin * ymax).log2().ceil();
+    let k_hi = (needed + 3.0).clamp(0.0, 61.0) as i32;
+    let k_lo = (needed - 6.0).clamp(0.0, 61.0) as i32;
+    let mut last: Option<Vec<i64>> = None;
+    for k in k_lo..=k_hi {
+        let t = (k as f64).exp2() / ymax;
+        let a: Vec<i64> = y.iter().map(|v| (v * t).round() as i64).collect();
+        if a.iter().all(|&v| v == 0) || last.as_ref() == Some(&a) {
+            continue;
+        }
+        if let Some(e) = verify_certificate(sets, &a) {
+            return Some(reduce_by_gcd(a, e));
+        }
+        last = Some(a);
+    }
+    None
+}
+
+/// Divides a verified certificate by the gcd of its coefficients (every value `a·F` is a
+/// multiple of it, so the extremes divide exactly).
+pub(crate) fn reduce_by_gcd(a: Vec<i64>, e: Extremes) -> (Vec<i64>, Extremes) {
+    let g = a.iter().fold(0i64, |g, &v| g.gcd(&v));
+    if g <= 1 {
+        return (a, e);
+    }
+    let g128 = g as i128;
+    (
+        a.into_iter().map(|v| v / g).collect(),
+        Extremes {
+            lower: e.lower / g128,
+            upper: e.upper / g128,
+            above: e.above.map(|v| v / g128),
+            below: e.below.map(|v| v / g128),
+        },
+    )
+}
+
+/// Decides exactly whether the origin lies in the convex hull of `points`; returns the
+/// points used and their weights (`λ ≥ 0`, `Σλ = 1`, `Σ λ d = 0`) when it does.
+pub(crate) fn origin_in_hull(points: &[Vec<i64>]) -> Option<(Vec<usize>, Vec<BigRational>)> {
+    if points.is_empty() {
+        return None;
+    }
+    let mut list = ListSupport {
+        points: points
+            .iter()
+            .map(|p| p.iter().map(|&v| BigRational::from_i64(v)).collect())
+            .collect(),
+    };
+    let mut simplex = Simplex::default();
+    let params = exact_params(list.dim());
+    match gjk(&mut list, &mut simplex, &params).0 {
+        GjkOutcome::OriginInside => Some((
+            simplex
+                .vertices
+                .iter()
+                .map(|v| v.tag.inlier as usize)
+                .collect(),
+            simplex.weights,
+        )),
+        _ => None,
+    }
+}
+
+fn exact_params(dim: usize) -> GjkParams {
+    GjkParams {
+        eps: 0.0,
+        eps_zero: 0.0,
+        // Finite in exact arithmetic (Wolfe); the cap is a guard, far above what is met.
+        max_iterations: 10_000 + 1_000 * dim,
+        first_separation: true,
+    }
+}
+
+/// The exact decision of the fallback.
+pub(crate) enum ExactDecision {
+    /// A verified integer certificate.
+    Described(Vec<i64>, Extremes),
+    /// Tags of points of `D` and weights with `Σ λ d = 0`.
+    NotDescribed(Vec<Tag>, Vec<BigRational>),
+    /// The exact run hit its cap, or its direction does not fit in `i64`.
+    Undecided,
+}
+
+/// The exact fallback: the same GJK variant in rational arithmetic, warm-started from the
+/// tags of the float run's simplex.
+pub(crate) fn decide_exactly(sets: &Sets<'_>, warm: &[Tag], max_abs: &[i64]) -> ExactDecision {
+    let mut support = ExactSupport { sets: *sets };
+    let mut simplex: Simplex<BigRational> = Simplex::default();
+    if let Some(first) = warm.first() {
+        simplex.reset_to(support.vertex(first));
+    }
+    let params = exact_params(max_abs.len());
+    match gjk(&mut support, &mut simplex, &params).0 {
+        GjkOutcome::Separated { direction, .. } => {
+            let x = integer_direction(&direction);
+            certificate_from_big(sets, &x, max_abs)
+        }
+        GjkOutcome::OriginInside => ExactDecision::NotDescribed(
+            simplex.vertices.iter().map(|v| v.tag).collect(),
+            simplex.weights,
+        ),
+        GjkOutcome::Empty => ExactDecision::Described(
+            vec![0; max_abs.len()],
+            Extremes {
+                lower: 0,
+                upper: 0,
+                above: None,
+                below: None,
+            },
+        ),
+        GjkOutcome::Stalled => ExactDecision::Undecided,
+    }
+}
+
+/// An `i64` certificate from an exact separating direction: the direction itself divided by
+/// its gcd when it fits, otherwise roundings of it at growing precision.
+fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt], max_abs: &[i64]) -> ExactDecision {
+    let g = x.iter().fold(BigInt::zero(), |g, v| g.gcd(v));
+    let reduced: Vec<BigInt> = if g.is_zero() {
+        x.to_vec()
+    } else {
+        x.iter().map(|v| v / &g).collect()
+    };
+    if let Some(a) = reduced
+        .iter()
+        .map(|v| v.to_i64())
+        .collect::<Option<Vec<i64>>>()
+    {
+        if let Some(e) = verify_certificate(sets, &a) {
+            let (a, e) = reduce_by_gcd(a, e);
+            return ExactDecision::Described(a, e);
+        }
+    }
+    // Too large for i64 (or overflowing i128 products): round a scaled-down copy.
+    let bits = reduced.iter().map(|v| v.abs().bits()).max().unwrap_or(0);
+    for keep in (8..=60u64).rev().step_by(4) {
+        let shift = bits.saturating_sub(keep);
+        let a: Vec<i64> = reduced
+            .iter()
+            .map(|v| {
+                let q: BigRational =
+                    BigRational::new(v.clone(), BigInt::from(1u8) << shift as usize);
+                q.round().to_integer().to_i64().unwrap_or(0)
+            })
+            .collect();
+        if let Some(e) = verify_certificate(sets, &a) {
+            let (a, e) = reduce_by_gcd(a, e);
+            return ExactDecision::Described(a, e);
+        }
+    }
+    let _ = max_abs;
+    ExactDecision::Undecided
+}

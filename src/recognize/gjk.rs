@@ -1,0 +1,238 @@
+//! The GJK variant (the paper's Algorithm 1): is the origin outside `conv(D)`?
+//!
+//! ```text
+//! x ← a point of D (or the closest point of the warm-start simplex)
+//! loop
+//!     if x = 0                          → the origin is in conv(simplex): not separable
+//!     s ← support point of D in direction −x   (argmin_{d∈D} x·d)
+//!     if x·s > 0                        → x separates: every d ∈ D has x·d ≥ x·s > 0
+//!     if ‖x‖² − x·s ≤ ε‖x‖²             → x is already the closest point (numerically): stop
+//!     simplex ← simplex ∪ {s}
+//!     x ← closest point of the simplex to the origin; remove the vertices not needed
+//! ```
+//!
+//! In exact arithmetic every iteration strictly decreases `‖x‖` and no simplex repeats, so
+//! the loop ends after finitely many steps (Wolfe 1976); in `f64` an iteration cap and the
+//! "no progress" tests stop it, and the caller checks every answer exactly.
+
+use super::scalar::Scalar;
+use super::simplex::Simplex;
+use super::support::SupportMap;
+
+/// How a run of the GJK variant ended.
+#[derive(Clone, Debug)]
+pub(crate) enum GjkOutcome<T> {
+    /// `x·d > 0` for every `d ∈ D` (as computed): `x` is a separating direction.
+    Separated {
+        /// The direction `x` (the current closest point).
+        direction: Vec<T>,
+        /// `min_{d∈D} x·d` as computed.
+        margin: T,
+        /// True when `x` is (numerically) the closest point of `conv(D)`: the largest margin.
+        converged: bool,
+    },
+    /// The closest point is the origin: the simplex holds a witness.
+    OriginInside,
+    /// No progress or the iteration cap: undecided in this arithmetic.
+    Stalled,
+    /// `D` is empty: every direction separates.
+    Empty,
+}
+
+/// Settings of a run.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct GjkParams {
+    /// Relative tolerance (`f64` runs only).
+    pub eps: f64,
+    /// Tolerance of the test `x = 0`, relative to the largest squared vertex norm.
+    pub eps_zero: f64,
+    /// Iteration cap.
+    pub max_iterations: usize,
+    /// Stop at the first separating direction instead of the largest-margin one.
+    pub first_separation: bool,
+}
+
+fn dot<T: Scalar>(a: &[T], b: &[T]) -> T {
+    a.iter()
+        .zip(b)
+        .fold(T::zero(), |s, (x, y)| s + x.clone() * y.clone())
+}
+
+/// Runs the GJK variant from the given simplex (empty: start from any point of `D`).
+/// Returns the outcome and the number of iterations.
+pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
+    support: &mut S,
+    simplex: &mut Simplex<T>,
+    params: &GjkParams,
+) -> (GjkOutcome<T>, usize) {
+    let dim = support.dim();
+    if simplex.is_empty() {
+        let any = vec![T::zero(); dim];
+        match support.support_point(&any) {
+            Some(v) => simplex.reset_to(v),
+            None => return (GjkOutcome::Empty, 0),
+        }
+    } else if simplex.reduce_to_closest_point(params.eps).is_err() {
+        return (GjkOutcome::Stalled, 0);
+    }
+    let mut previous = None::<T>;
+    for iteration in 1..=params.max_iterations {
+        let Some(x) = simplex.point(dim) else {
+            return (GjkOutcome::Stalled, iteration);
+        };
+        debug_assert!(x.iter().all(Scalar::is_finite), "non-finite GJK point");
+        if !x.iter().all(Scalar::is_finite) {
+            return (GjkOutcome::Stalled, iteration);
+        }
+        let xx = dot(&x, &x);
+        let max_w = simplex
+            .vertices
+            .iter()
+            .map(|v| dot(&v.point, &v.point))
+            .fold(T::zero(), |m, n| if n > m { n } else { m });
+        if xx <= T::tolerance(&max_w, params.eps_zero) {
+            return (GjkOutcome::OriginInside, iteration);
+        }
+        // Every iteration must decrease ‖x‖² strictly; otherwise rounding is cycling.
+        if previous.as_ref().is_some_and(|p| xx >= *p) {
+            return (GjkOutcome::Stalled, iteration);
+        }
+        previous = Some(xx.clone());
+        let Some(s) = support.support_point(&x) else {
+            return (GjkOutcome::Empty, iteration);
+        };
+        let xs = dot(&x, &s.point);
+        let gap = xx.clone() - xs.clone();
+        let converged = gap <= T::tolerance(&xx, params.eps);
+        if xs > T::zero() && (params.first_separation || converged) {
+            return (
+                GjkOutcome::Separated {
+                    direction: x,
+                    margin: xs,
+                    converged,
+                },
+                iteration,
+            );
+        }
+        if converged || simplex.contains(&s.tag) {
+            // x is (numerically) the closest point but does not separate: x ≈ 0 in truth,
+            // or rounding hides progress.
+            return (GjkOutcome::Stalled, iteration);
+        }
+        simplex.push(s);
+        if simplex.len() > dim + 1 || simplex.reduce_to_closest_point(params.eps).is_err() {
+            return (GjkOutcome::Stalled, iteration);
+        }
+    }
+    (GjkOutcome::Stalled, params.max_iterations)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recognize::support::ListSupport;
+    use proptest::prelude::*;
+
+    fn norm2(x: &[f64]) -> f64 {
+        x.iter().map(|v| v * v).sum()
+    }
+
+    /// Brute force over all faces: for every subset of the points, the nearest point of its
+    /// affine hull (normal equations, own elimination); those with non-negative weights are
+    /// points of the hull, and the closest of them is the answer.
+    fn brute_closest(points: &[Vec<f64>]) -> f64 {
+        let k = points.len();
+        let mut best = f64::INFINITY;
+        for mask in 1u32..(1 << k) {
+            let sub: Vec<&Vec<f64>> = (0..k)
+                .filter(|i| mask >> i & 1 == 1)
+                .map(|i| &points[i])
+                .collect();
+            let m = sub.len();
+            // Bordered system [G 1; 1ᵀ 0] [μ; ρ] = [0; 1].
+            let mut a = vec![vec![0.0; m + 2]; m + 1];
+            for i in 0..m {
+                for j in 0..m {
+                    a[i][j] = sub[i].iter().zip(sub[j]).map(|(x, y)| x * y).sum();
+                }
+                a[i][m] = 1.0;
+                a[m][i] = 1.0;
+            }
+            a[m][m + 1] = 1.0;
+            let n = m + 1;
+            let mut ok = true;
+            for c in 0..n {
+                let p = (c..n)
+                    .max_by(|&x, &y| a[x][c].abs().partial_cmp(&a[y][c].abs()).unwrap())
+                    .unwrap();
+                if a[p][c].abs() < 1e-9 {
+                    ok = false;
+                    break;
+                }
+                a.swap(c, p);
+                for r in 0..n {
+                    if r != c {
+                        let f = a[r][c] / a[c][c];
+                        for cc in c..=n {
+                            a[r][cc] -= f * a[c][cc];
+                        }
+                    }
+                }
+            }
+            if !ok {
+                continue;
+            }
+            let mu: Vec<f64> = (0..m).map(|i| a[i][n] / a[i][i]).collect();
+            if mu.iter().any(|&w| w < -1e-12) {
+                continue;
+            }
+            let dim = points[0].len();
+            let x: Vec<f64> = (0..dim)
+                .map(|d| sub.iter().zip(&mu).map(|(p, w)| p[d] * w).sum())
+                .collect();
+            best = best.min(norm2(&x).sqrt());
+        }
+        best
+    }
+
+    /// The closest point of a simplex (its vertex list) to the origin: the GJK variant run to
+    /// convergence on the explicit vertex list.
+    fn closest(points: &[Vec<f64>]) -> f64 {
+        let mut list = ListSupport {
+            points: points.to_vec(),
+        };
+        let mut simplex = Simplex::default();
+        let params = GjkParams {
+            eps: 1e-12,
+            eps_zero: 1e-24,
+            max_iterations: 100,
+            first_separation: false,
+        };
+        match gjk(&mut list, &mut simplex, &params).0 {
+            GjkOutcome::Separated { direction, .. } => norm2(&direction).sqrt(),
+            GjkOutcome::OriginInside => 0.0,
+            GjkOutcome::Stalled => norm2(&simplex.point(points[0].len()).unwrap()).sqrt(),
+            GjkOutcome::Empty => f64::NAN,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(1000))]
+        #[test]
+        fn closest_point_of_simplex_matches_brute_force(
+            dim in 1usize..=6,
+            raw in proptest::collection::vec(proptest::collection::vec(-10i32..=10, 6), 1..=7),
+        ) {
+            // Up to dim+1 random points in dimension dim, degenerate sets included.
+            let points: Vec<Vec<f64>> = raw
+                .iter()
+                .take(dim + 1)
+                .map(|p| p[..dim].iter().map(|&v| v as f64).collect())
+                .collect();
+            let got = closest(&points);
+            let want = brute_closest(&points);
+            prop_assert!((got - want).abs() <= 1e-4 * (1.0 + want),
+                "dim {dim}: GJK {got}, brute force {want}, points {points:?}");
+        }
+    }
+}

@@ -1,0 +1,610 @@
+//! Recognition of Digital Level Layers: the paper's GJK variant, exact in its decisions.
+//!
+//! # The problem
+//! Given finite sets of integer points `S` (inliers), `S⁺` and `S⁻` (outliers) and a
+//! [`Basis`] `f_1, …, f_n`, lift every point to `F(p) = (f_1(p), …, f_n(p)) ∈ Zⁿ`. The set `S`
+//! is *described* when some `a ∈ Rⁿ` gives
+//!
+//! ```text
+//! a·F(s⁻) < a·F(s) < a·F(s⁺)     for all s⁻ ∈ S⁻, s ∈ S, s⁺ ∈ S⁺.
+//! ```
+//!
+//! Then the Digital Level Layer `lower ≤ a·F(p) ≤ upper` (`lower`, `upper` the extremes over
+//! `S`) contains `S` and has `S⁺` strictly above and `S⁻` strictly below. Equivalently the
+//! origin is not in `conv(D)`, `D = (S⁺ − S) ∪ (S − S⁻)` (lifted): `a` is then any direction
+//! with `a·d > 0` on `D`. The paper's "or" (`S⁺` below, `S⁻` above) is the same problem for
+//! `−a`, so one run decides both.
+//!
+//! # The algorithm
+//! The GJK variant of the paper ([`gjk`](self) module): support points of `D` are computed
+//! from the three sets directly ([`support`](self) module, `O(|S| + |S⁺| + |S⁻|)` per
+//! support point); the closest point of the current simplex to the origin is found by
+//! Wolfe's minor cycle, which removes the vertices not needed. It runs in `f64`, in
+//! coordinates relative to a local origin and scaled by powers of two per lifted coordinate.
+//!
+//! # What is exact, and why it terminates
+//! The `f64` run only *proposes*. An answer is given only with a proof checked in exact
+//! arithmetic:
+//! * **described**: the float direction is rounded to an integer vector `a` and
+//!   `max_{S⁻} a·F < min_S a·F ≤ max_S a·F < min_{S⁺} a·F` is verified in overflow-checked
+//!   `i128` (the liftings are exact `i64`). The [`Certificate`] holds `a` and those values.
+//! * **not described**: the points of the final simplex are checked, in rational arithmetic,
+//!   to hold the origin in their convex hull (exact weights `λ ≥ 0`, `Σλ = 1`, `Σλd = 0`):
+//!   a [`Witness`]. No `a` can then exist, since `a·d > 0` for all `d` would give
+//!   `0 = a·Σλd > 0`.
+//! * otherwise (float run stalled, certificate or witness not confirmed), the same algorithm
+//!   runs in exact rational arithmetic, where every iteration strictly decreases the distance
+//!   and no simplex repeats, so it ends (Wolfe 1976). Its iteration cap is a guard only; were
+//!   it reached, the outcome would be [`Outcome::Undecided`], which callers treat as "cannot
+//!   grow" and which is counted in [`Stats`] (none has been met in the tests).
+//!
+//! # Incremental use
+//! A decomposition grows a piece one point at a time. The recognizer keeps the three sets and
+//! the last certificate with its exact extreme values: a new point is checked against them in
+//! `O(n)`, and GJK runs only when the old certificate no longer separates, warm-started from
+//! the previous simplex (whose vertices stay points of `D`, since the sets only grow between
+//! removals).
+
+mod exact;
+mod gjk;
+mod lifted;
+mod scalar;
+mod simplex;
+mod support;
+
+use crate::model::Basis;
+use exact::{
+    decide_exactly, dot_i128, origin_in_hull, round_to_certificate, verify_certificate,
+    ExactDecision, Extremes,
+};
+use gjk::{gjk, GjkOutcome, GjkParams};
+use lifted::LiftedSet;
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+use simplex::Simplex;
+use std::sync::Arc;
+use support::{FloatSupport, Sets, SupportMap, Tag};
+
+/// Which outlier set a point belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// `S⁺`: strictly above the layer (`a·F > upper`).
+    Upper,
+    /// `S⁻`: strictly below the layer (`a·F < lower`).
+    Lower,
+}
+
+/// Proof that a set is described: the integer layer `lower ≤ a·F(p − origin) ≤ upper`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Certificate {
+    /// The local origin the points are taken relative to.
+    pub origin: Vec<i64>,
+    /// `a`, one integer per basis function (the constant's coefficient is zero).
+    pub coefficients: Vec<i64>,
+    /// `min_S a·F`.
+    pub lower: i128,
+    /// `max_S a·F`.
+    pub upper: i128,
+    /// `min_{S⁺} a·F` (`> upper`), `None` if `S⁺` is empty.
+    pub above: Option<i128>,
+    /// `max_{S⁻} a·F` (`< lower`), `None` if `S⁻` is empty.
+    pub below: Option<i128>,
+}
+
+impl Certificate {
+    /// `a·F(p − origin)` exactly, or `None` on overflow or dimension mismatch.
+    pub fn value(&self, basis: &dyn Basis, p: &[i64]) -> Option<i128> {
+        if p.len() != self.origin.len() || self.coefficients.len() != basis.dim() {
+            return None;
+        }
+        let rel: Vec<i64> = p
+            .iter()
+            .zip(&self.origin)
+            .map(|(a, b)| a.checked_sub(*b))
+            .collect::<Option<_>>()?;
+        let mut f = vec![0; basis.dim()];
+        basis.lift(&rel, &mut f)?;
+        dot_i128(&self.coefficients, &f)
+    }
+
+    /// True when every coefficient is zero (only possible when there are no outliers).
+    pub fn is_zero(&self) -> bool {
+        self.coefficients.iter().all(|&c| c == 0)
+    }
+}
+
+/// Proof that a set is not described: points `d_k = ±(F(outlier) − F(inlier))` of `D` and
+/// exact weights `λ_k ≥ 0`, `Σλ = 1`, with `Σ λ_k d_k = 0`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Witness {
+    /// The local origin: `F` is evaluated at `p − origin`.
+    pub origin: Vec<i64>,
+    /// `(inlier, outlier, side)` of each point of `D` used, absolute coordinates.
+    pub pairs: Vec<(Vec<i64>, Vec<i64>, Side)>,
+    weights: Vec<BigRational>,
+}
+
+impl Witness {
+    /// The weights, as `f64` approximations (the exact ones are checked by
+    /// [`Witness::verify`]).
+    pub fn weights(&self) -> Vec<f64> {
+        self.weights
+            .iter()
+            .map(|w| w.to_f64().unwrap_or(f64::NAN))
+            .collect()
+    }
+
+    /// Re-checks the witness exactly: weights non-negative summing to one, and the weighted
+    /// sum of the differences zero.
+    pub fn verify(&self, basis: &dyn Basis) -> bool {
+        use num_traits::{One, Zero};
+        if self.pairs.is_empty() || self.pairs.len() != self.weights.len() {
+            return false;
+        }
+        let n = basis.dim();
+        let mut sum = vec![BigRational::zero(); n];
+        let mut total = BigRational::zero();
+        let (mut fi, mut fo) = (vec![0; n], vec![0; n]);
+        let rel = |p: &[i64]| -> Vec<i64> {
+            p.iter()
+                .zip(&self.origin)
+                .map(|(a, b)| a.wrapping_sub(*b))
+                .collect()
+        };
+        for ((inl, out, side), w) in self.pairs.iter().zip(&self.weights) {
+            if *w < BigRational::zero()
+                || basis.lift(&rel(inl), &mut fi).is_none()
+                || basis.lift(&rel(out), &mut fo).is_none()
+            {
+                return false;
+            }
+            total += w;
+            for k in 0..n {
+                let d = match side {
+                    Side::Upper => fo[k] as i128 - fi[k] as i128,
+                    Side::Lower => fi[k] as i128 - fo[k] as i128,
+                };
+                sum[k] += w * BigRational::from_integer(d.into());
+            }
+        }
+        total == BigRational::one() && sum.iter().all(Zero::is_zero)
+    }
+}
+
+/// The answer of [`Recognizer::recognize`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// A verified [`Certificate`] exists ([`Recognizer::certificate`]).
+    Described,
+    /// A verified [`Witness`] exists ([`Recognizer::witness`]).
+    NotDescribed,
+    /// Neither could be established (exact guard cap, or liftings overflowing `i64`).
+    Undecided,
+}
+
+/// Counters of the work done, for benchmarks and reports.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Calls to [`Recognizer::recognize`].
+    pub queries: u64,
+    /// Queries answered by the previous certificate alone.
+    pub certificate_reused: u64,
+    /// Float GJK runs.
+    pub float_runs: u64,
+    /// Float GJK iterations, in all.
+    pub float_iterations: u64,
+    /// Queries that needed the exact fallback.
+    pub exact_fallbacks: u64,
+    /// Queries answered [`Outcome::Undecided`].
+    pub undecided: u64,
+}
+
+impl Stats {
+    /// Adds another set of counters.
+    pub fn add(&mut self, o: &Stats) {
+        self.queries += o.queries;
+        self.certificate_reused += o.certificate_reused;
+        self.float_runs += o.float_runs;
+        self.float_iterations += o.float_iterations;
+        self.exact_fallbacks += o.exact_fallbacks;
+        self.undecided += o.undecided;
+    }
+}
+
+/// The incremental recognizer: owns the three sets, the scratch simplex and the last
+/// certificate.
+#[derive(Debug)]
+pub struct Recognizer {
+    basis: Arc<dyn Basis>,
+    origin: Vec<i64>,
+    inliers: LiftedSet,
+    upper: LiftedSet,
+    lower: LiftedSet,
+    /// Largest `|F_i|` over every point added since the last reset.
+    max_abs: Vec<i64>,
+    simplex: Simplex<f64>,
+    /// The last verified certificate (coefficients, extremes) and whether it still holds.
+    cert: Option<(Vec<i64>, Extremes)>,
+    cert_valid: bool,
+    witness: Option<Witness>,
+    overflow: bool,
+    stats: Stats,
+    rel: Vec<i64>,
+    lift: Vec<i64>,
+}
+
+const FLOAT_PARAMS: GjkParams = GjkParams {
+    eps: 1e-12,
+    eps_zero: 1e-24,
+    max_iterations: 1000,
+    first_separation: true,
+};
+
+impl Recognizer {
+    /// A recognizer for `basis`, with points taken relative to `origin`.
+    ///
+    /// Returns `None` if `origin` does not have the basis' point dimension.
+    pub fn new(basis: Arc<dyn Basis>, origin: &[i64]) -> Option<Recognizer> {
+        let (pd, n) = (basis.point_dim(), basis.dim());
+        if origin.len() != pd {
+            return None;
+        }
+        Some(Recognizer {
+            origin: origin.to_vec(),
+            inliers: LiftedSet::new(pd, n),
+            upper: LiftedSet::new(pd, n),
+            lower: LiftedSet::new(pd, n),
+            max_abs: vec![0; n],
+            simplex: Simplex::default(),
+            cert: None,
+            cert_valid: false,
+            witness: None,
+            overflow: false,
+            stats: Stats::default(),
+            rel: vec![0; pd],
+            lift: vec![0; n],
+            basis,
+        })
+    }
+
+    /// Empties the sets and moves the local origin (keeps allocations and statistics).
+    pub fn reset(&mut self, origin: &[i64]) {
+        debug_assert_eq!(origin.len(), self.origin.len());
+        self.origin.clear();
+        self.origin.extend_from_slice(origin);
+        self.inliers.clear();
+        self.upper.clear();
+        self.lower.clear();
+        self.max_abs.iter_mut().for_each(|m| *m = 0);
+        self.simplex.clear();
+        self.cert = None;
+        self.cert_valid = false;
+        self.witness = None;
+        self.overflow = false;
+    }
+
+    /// The basis.
+    pub fn basis(&self) -> &Arc<dyn Basis> {
+        &self.basis
+    }
+
+    /// Work counters since creation.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Number of inliers.
+    pub fn inlier_count(&self) -> usize {
+        self.inliers.len()
+    }
+
+    /// Number of outliers on `side`.
+    pub fn outlier_count(&self, side: Side) -> usize {
+        self.set(side).len()
+    }
+
+    fn set(&self, side: Side) -> &LiftedSet {
+        match side {
+            Side::Upper => &self.upper,
+            Side::Lower => &self.lower,
+        }
+    }
+
+    /// Lifts `p − origin` into `self.lift`; false on overflow.
+    fn lift_point(&mut self, p: &[i64]) -> bool {
+        debug_assert_eq!(p.len(), self.origin.len());
+        for ((r, a), b) in self.rel.iter_mut().zip(p).zip(&self.origin) {
+            match a.checked_sub(*b) {
+                Some(v) => *r = v,
+                None => return false,
+            }
+        }
+        if self.basis.lift(&self.rel, &mut self.lift).is_none() {
+            return false;
+        }
+        for (m, v) in self.max_abs.iter_mut().zip(&self.lift) {
+            *m = (*m).max(v.saturating_abs());
+        }
+        true
+    }
+
+    /// The current certificate's value at the last lifted point.
+    fn cert_value(&self) -> Option<i128> {
+        self.cert
+            .as_ref()
+            .and_then(|(a, _)| dot_i128(a, &self.lift))
+    }
+
+    /// Adds an inlier (absolute coordinates).
+    pub fn add_inlier(&mut self, p: &[i64]) {
+        if !self.lift_point(p) {
+            self.overflow = true;
+            return;
+        }
+        self.inliers.push(&self.rel, &self.lift);
+        if self.cert_valid {
+            let v = self.cert_value();
+            if let (Some(v), Some((_, e))) = (v, self.cert.as_mut()) {
+                e.lower = e.lower.min(v);
+                e.upper = e.upper.max(v);
+                self.cert_valid = e.separates();
+            } else {
+                self.cert_valid = false;
+            }
+        }
+    }
+
+    /// Adds an outlier on `side` (absolute coordinates).
+    pub fn add_outlier(&mut self, p: &[i64], side: Side) {
+        if !self.lift_point(p) {
+            self.overflow = true;
+            return;
+        }
+        match side {
+            Side::Upper => self.upper.push(&self.rel, &self.lift),
+            Side::Lower => self.lower.push(&self.rel, &self.lift),
+        }
+        if self.cert_valid {
+            let v = self.cert_value();
+            if let (Some(v), Some((_, e))) = (v, self.cert.as_mut()) {
+                match side {
+                    Side::Upper => e.above = Some(e.above.map_or(v, |m| m.min(v))),
+                    Side::Lower => e.below = Some(e.below.map_or(v, |m| m.max(v))),
+                }
+                self.cert_valid = e.separates();
+            } else {
+                self.cert_valid = false;
+            }
+        }
+    }
+
+    /// Removes one outlier equal to `p` from `side`; returns false if there is none.
+    ///
+    /// A removal only relaxes the problem: a valid certificate stays valid (its extremes are
+    /// recomputed exactly). The warm-start simplex is dropped, since its vertices name
+    /// outliers by index.
+    pub fn remove_outlier(&mut self, p: &[i64], side: Side) -> bool {
+        let rel: Vec<i64> = p
+            .iter()
+            .zip(&self.origin)
+            .map(|(a, b)| a.wrapping_sub(*b))
+            .collect();
+        let set = match side {
+            Side::Upper => &mut self.upper,
+            Side::Lower => &mut self.lower,
+        };
+        let Some(i) = set.find(&rel) else {
+            return false;
+        };
+        set.swap_remove(i);
+        self.simplex.clear();
+        if self.cert_valid {
+            if let Some((a, e)) = self.cert.as_mut() {
+                let sets = Sets {
+                    inliers: &self.inliers,
+                    upper: &self.upper,
+                    lower: &self.lower,
+                };
+                match verify_certificate(&sets, a) {
+                    Some(new) => *e = new,
+                    None => self.cert_valid = false,
+                }
+            }
+        }
+        true
+    }
+
+    /// The certificate of the last [`Outcome::Described`] answer, if the sets have not changed
+    /// since in a way that breaks it.
+    pub fn certificate(&self) -> Option<Certificate> {
+        if !self.cert_valid {
+            return None;
+        }
+        let (a, e) = self.cert.as_ref()?;
+        Some(Certificate {
+            origin: self.origin.clone(),
+            coefficients: a.clone(),
+            lower: e.lower,
+            upper: e.upper,
+            above: e.above,
+            below: e.below,
+        })
+    }
+
+    /// The witness of the last [`Outcome::NotDescribed`] answer.
+    pub fn witness(&self) -> Option<&Witness> {
+        self.witness.as_ref()
+    }
+
+    /// Decides whether the current sets are described.
+    pub fn recognize(&mut self) -> Outcome {
+        self.stats.queries += 1;
+        self.witness = None;
+        if self.overflow {
+            self.stats.undecided += 1;
+            return Outcome::Undecided;
+        }
+        if self.cert_valid {
+            self.stats.certificate_reused += 1;
+            return Outcome::Described;
+        }
+        let outcome = self.solve();
+        if outcome == Outcome::Undecided {
+            self.stats.undecided += 1;
+        }
+        outcome
+    }
+
+    fn accept(&mut self, a: Vec<i64>, e: Extremes) -> Outcome {
+        self.cert = Some((a, e));
+        self.cert_valid = true;
+        Outcome::Described
+    }
+
+    fn solve(&mut self) -> Outcome {
+        let n = self.max_abs.len();
+        let sets = Sets {
+            inliers: &self.inliers,
+            upper: &self.upper,
+            lower: &self.lower,
+        };
+        if sets.is_empty() {
+            // Nothing to separate: the zero function describes any set of inliers.
+            let e = Extremes {
+                lower: 0,
+                upper: 0,
+                above: None,
+                below: None,
+            };
+            return self.accept(vec![0; n], e);
+        }
+        // Powers of two bringing every coordinate near magnitude one.
+        let scale: Vec<f64> = self
+            .max_abs
+            .iter()
+            .map(|&m| {
+                if m > 0 {
+                    (-(m as f64).log2().ceil()).exp2()
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let mut support = FloatSupport {
+            sets,
+            scale: &scale,
+            y: Vec::with_capacity(n),
+        };
+        // Warm start: rebuild the kept vertices in the current scaling.
+        for v in self.simplex.vertices.iter_mut() {
+            *v = support.vertex(&v.tag);
+        }
+        self.stats.float_runs += 1;
+        let mut params = FLOAT_PARAMS;
+        let mut certified: Option<(Vec<i64>, Extremes)> = None;
+        let mut witness = None;
+        for attempt in 0..2 {
+            let (outcome, iterations) = gjk(&mut support, &mut self.simplex, &params);
+            self.stats.float_iterations += iterations as u64;
+            match outcome {
+                GjkOutcome::Separated {
+                    direction,
+                    margin,
+                    converged,
+                } => {
+                    let y: Vec<f64> = direction.iter().zip(&scale).map(|(a, s)| a * s).collect();
+                    certified = round_to_certificate(&sets, &y, margin, &self.max_abs);
+                    if certified.is_some() || converged || attempt == 1 {
+                        break;
+                    }
+                    // Converge to the largest-margin direction, then round again.
+                    params.first_separation = false;
+                }
+                GjkOutcome::OriginInside => {
+                    let points: Vec<Vec<i64>> = self
+                        .simplex
+                        .vertices
+                        .iter()
+                        .map(|v| sets.difference(&v.tag))
+                        .collect();
+                    if let Some((used, weights)) = origin_in_hull(&points) {
+                        let tags: Vec<Tag> =
+                            used.iter().map(|&i| self.simplex.vertices[i].tag).collect();
+                        witness = Some((tags, weights));
+                    }
+                    break;
+                }
+                GjkOutcome::Empty | GjkOutcome::Stalled => break,
+            }
+        }
+        if let Some((a, e)) = certified {
+            return self.accept(a, e);
+        }
+        if let Some((tags, weights)) = witness {
+            return self.reject(&tags, weights);
+        }
+        // The float run could not prove its answer: decide in exact arithmetic.
+        self.stats.exact_fallbacks += 1;
+        let warm: Vec<Tag> = self.simplex.vertices.iter().map(|v| v.tag).collect();
+        self.simplex.clear();
+        match decide_exactly(&sets, &warm, &self.max_abs) {
+            ExactDecision::Described(a, e) => self.accept(a, e),
+            ExactDecision::NotDescribed(tags, weights) => self.reject(&tags, weights),
+            ExactDecision::Undecided => {
+                self.cert_valid = false;
+                Outcome::Undecided
+            }
+        }
+    }
+
+    fn reject(&mut self, tags: &[Tag], weights: Vec<BigRational>) -> Outcome {
+        let abs = |rel: &[i64]| -> Vec<i64> {
+            rel.iter().zip(&self.origin).map(|(a, b)| a + b).collect()
+        };
+        let pairs = tags
+            .iter()
+            .map(|t| {
+                let inl = abs(self.inliers.point(t.inlier as usize));
+                let out = abs(self.set(t.side).point(t.outlier as usize));
+                (inl, out, t.side)
+            })
+            .collect();
+        self.witness = Some(Witness {
+            origin: self.origin.clone(),
+            pairs,
+            weights,
+        });
+        self.cert_valid = false;
+        Outcome::NotDescribed
+    }
+}
+
+/// Decides one recognition problem from scratch (convenience for tests and one-off use).
+pub fn recognize(
+    basis: Arc<dyn Basis>,
+    inliers: &[Vec<i64>],
+    upper: &[Vec<i64>],
+    lower: &[Vec<i64>],
+) -> (Outcome, Option<Certificate>, Option<Witness>) {
+    let origin = inliers
+        .first()
+        .cloned()
+        .unwrap_or_else(|| vec![0; basis.point_dim()]);
+    let Some(mut r) = Recognizer::new(basis, &origin) else {
+        return (Outcome::Undecided, None, None);
+    };
+    for p in inliers {
+        r.add_inlier(p);
+    }
+    for p in upper {
+        r.add_outlier(p, Side::Upper);
+    }
+    for p in lower {
+        r.add_outlier(p, Side::Lower);
+    }
+    let o = r.recognize();
+    (o, r.certificate(), r.witness().cloned())
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,320 @@
+//! The simplex of the GJK variant and its closest point to the origin.
+//!
+//! A simplex is a set of affinely independent points `w_0, …, w_k` of `D` (the support points
+//! kept so far) with barycentric weights `λ_i > 0`, `Σ λ_i = 1`; its current point is
+//! `x = Σ λ_i w_i`. [`Simplex::reduce_to_closest_point`] is the sub-algorithm "closest point
+//! of the simplex to the origin, removing the vertices that are not needed": Wolfe's minor
+//! cycle (P. Wolfe, *Finding the nearest point in a polytope*, Math. Programming 11, 1976),
+//! which works in any dimension with `O(k³)` work instead of the `2^k` faces of Johnson's
+//! sub-algorithm:
+//!
+//! 1. `μ` = weights of the point of the *affine* hull of the simplex nearest to the origin:
+//!    minimize `‖Σ μ_i w_i‖²` subject to `Σ μ_i = 1`, i.e. solve
+//!    `[G 1; 1ᵀ 0] [μ; ρ] = [0; 1]` with the Gram matrix `G_ij = w_i·w_j`.
+//! 2. If every `μ_i > 0`, that point lies in the relative interior: it is the closest point.
+//! 3. Otherwise walk from `λ` towards `μ` until the first weight reaches zero
+//!    (`θ = min_{μ_i ≤ 0} λ_i / (λ_i − μ_i)`), drop the vertices whose weight vanished, and
+//!    repeat.
+
+use super::scalar::Scalar;
+use super::support::Tag;
+
+/// A vertex of the simplex: a point of `D` and where it came from.
+#[derive(Clone, Debug)]
+pub(crate) struct Vertex<T> {
+    /// The point of `D`.
+    pub point: Vec<T>,
+    /// The inlier and outlier it is the difference of.
+    pub tag: Tag,
+}
+
+/// The simplex, owned by the caller and reused between runs (warm start).
+#[derive(Clone, Debug)]
+pub(crate) struct Simplex<T> {
+    /// The vertices, affinely independent.
+    pub vertices: Vec<Vertex<T>>,
+    /// Barycentric weights, positive, summing to one.
+    pub weights: Vec<T>,
+}
+
+/// The affine system of step 1 is singular: the vertices are (numerically) affinely dependent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Degenerate;
+
+impl<T: Scalar> Default for Simplex<T> {
+    fn default() -> Self {
+        Simplex {
+            vertices: Vec::new(),
+            weights: Vec::new(),
+        }
+    }
+}
+
+impl<T: Scalar> Simplex<T> {
+    /// Number of vertices.
+    pub fn len(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// True when there is no vertex.
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty()
+    }
+
+    /// Removes every vertex.
+    pub fn clear(&mut self) {
+        self.vertices.clear();
+        self.weights.clear();
+    }
+
+    /// True if a vertex has this tag.
+    pub fn contains(&self, tag: &Tag) -> bool {
+        self.vertices.iter().any(|v| v.tag == *tag)
+    }
+
+    /// The current point `x = Σ λ_i w_i` (the closest point once reduced). Empty simplex: `None`.
+    pub fn point(&self, dim: usize) -> Option<Vec<T>> {
+        if self.vertices.is_empty() {
+            return None;
+        }
+        let mut x = vec![T::zero(); dim];
+        for (v, l) in self.vertices.iter().zip(&self.weights) {
+            for (xi, wi) in x.iter_mut().zip(&v.point) {
+                *xi = xi.clone() + l.clone() * wi.clone();
+            }
+        }
+        Some(x)
+    }
+
+    /// Adds a support point with weight zero (the caller then reduces).
+    pub fn push(&mut self, v: Vertex<T>) {
+        self.vertices.push(v);
+        self.weights.push(T::zero());
+    }
+
+    /// Starts the simplex afresh from one vertex.
+    pub fn reset_to(&mut self, v: Vertex<T>) {
+        self.clear();
+        self.vertices.push(v);
+        self.weights.push(T::one());
+    }
+
+    /// Wolfe's minor cycle: moves the weights to the closest point of the simplex to the
+    /// origin and removes the vertices that are not needed (weight zero).
+    ///
+    /// `eps` is the relative tolerance of `f64` runs (ignored by exact numbers).
+    pub fn reduce_to_closest_point(&mut self, eps: f64) -> Result<(), Degenerate> {
+        let tiny = T::tolerance(&T::one(), eps);
+        // Each pass removes at least one vertex, so at most len() passes.
+        for _ in 0..=self.vertices.len() {
+            let mu = affine_min_norm_weights(&self.vertices, eps).ok_or(Degenerate)?;
+            if mu.iter().all(|m| *m > tiny) {
+                self.weights = mu;
+                return Ok(());
+            }
+            // Walk from λ towards μ until a weight reaches zero.
+            let mut theta = T::one();
+            let mut leaving = None;
+            for (i, (l, m)) in self.weights.iter().zip(&mu).enumerate() {
+                if *m <= tiny {
+                    let denom = l.clone() - m.clone();
+                    let t = if denom > T::zero() {
+                        l.clone() / denom
+                    } else {
+                        T::zero()
+                    };
+                    if leaving.is_none() || t < theta {
+                        theta = t;
+                        leaving = Some(i);
+                    }
+                }
+            }
+            let keep = T::one() - theta.clone();
+            let mut next: Vec<T> = self
+                .weights
+                .iter()
+                .zip(&mu)
+                .map(|(l, m)| keep.clone() * l.clone() + theta.clone() * m.clone())
+                .collect();
+            if let Some(i) = leaving {
+                next[i] = T::zero();
+            }
+            let mut i = 0;
+            while i < next.len() {
+                if next[i] <= tiny {
+                    next.remove(i);
+                    self.vertices.remove(i);
+                } else {
+                    i += 1;
+                }
+            }
+            if self.vertices.is_empty() {
+                return Err(Degenerate);
+            }
+            // Renormalize (exact numbers already sum to one; floats drift).
+            let sum = next.iter().fold(T::zero(), |s, l| s + l.clone());
+            self.weights = next.into_iter().map(|l| l / sum.clone()).collect();
+        }
+        Err(Degenerate)
+    }
+}
+
+/// The weights `μ` (summing to one) of the point of the affine hull of `vertices` nearest to
+/// the origin. Returns `None` if the vertices are (numerically) affinely dependent.
+pub(crate) fn affine_min_norm_weights<T: Scalar>(
+    vertices: &[Vertex<T>],
+    eps: f64,
+) -> Option<Vec<T>> {
+    let k = vertices.len();
+    if k == 0 {
+        return None;
+    }
+    if k == 1 {
+        return Some(vec![T::one()]);
+    }
+    // Reduced form, better conditioned than the bordered Gram system: with the edges
+    // e_i = w_i − w_0, minimize ‖w_0 + Σ t_i e_i‖², i.e. (EᵀE) t = −Eᵀ w_0, μ_0 = 1 − Σ t_i.
+    let w0 = &vertices[0].point;
+    let edges: Vec<Vec<T>> = vertices[1..]
+        .iter()
+        .map(|v| {
+            v.point
+                .iter()
+                .zip(w0)
+                .map(|(a, b)| a.clone() - b.clone())
+                .collect()
+        })
+        .collect();
+    let m = k - 1;
+    let dot = |a: &[T], b: &[T]| {
+        a.iter()
+            .zip(b)
+            .fold(T::zero(), |s, (x, y)| s + x.clone() * y.clone())
+    };
+    // Augmented matrix [EᵀE | −Eᵀw0].
+    let mut a: Vec<Vec<T>> = (0..m)
+        .map(|i| {
+            let mut row: Vec<T> = (0..m).map(|j| dot(&edges[i], &edges[j])).collect();
+            row.push(-dot(&edges[i], w0));
+            row
+        })
+        .collect();
+    let scale = a.iter().enumerate().fold(
+        T::zero(),
+        |s, (i, r)| if r[i] > s { r[i].clone() } else { s },
+    );
+    let pivot_tol = T::tolerance(&scale, eps);
+    let t = solve_in_place(&mut a, &pivot_tol)?;
+    let sum_t = t.iter().fold(T::zero(), |s, x| s + x.clone());
+    let mut mu = Vec::with_capacity(k);
+    mu.push(T::one() - sum_t);
+    mu.extend(t);
+    if mu.iter().all(|x| x.is_finite()) {
+        Some(mu)
+    } else {
+        None
+    }
+}
+
+/// Gaussian elimination with partial pivoting on an augmented `m × (m+1)` matrix.
+/// Returns `None` when a pivot is not larger than `pivot_tol` (singular).
+fn solve_in_place<T: Scalar>(a: &mut [Vec<T>], pivot_tol: &T) -> Option<Vec<T>> {
+    let m = a.len();
+    for col in 0..m {
+        let mut best = col;
+        for r in col + 1..m {
+            if a[r][col].abs() > a[best][col].abs() {
+                best = r;
+            }
+        }
+        if a[best][col].abs() <= *pivot_tol || a[best][col] == T::zero() {
+            return None;
+        }
+        a.swap(col, best);
+        for r in col + 1..m {
+            if a[r][col] == T::zero() {
+                continue;
+            }
+            let f = a[r][col].clone() / a[col][col].clone();
+            for c in col..=m {
+                let v = a[col][c].clone();
+                a[r][c] = a[r][c].clone() - f.clone() * v;
+            }
+        }
+    }
+    let mut x = vec![T::zero(); m];
+    for r in (0..m).rev() {
+        let mut s = a[r][m].clone();
+        for c in r + 1..m {
+            s = s - a[r][c].clone() * x[c].clone();
+        }
+        x[r] = s / a[r][r].clone();
+    }
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recognize::support::Tag;
+
+    fn simplex_of(points: &[Vec<f64>]) -> Simplex<f64> {
+        let mut s = Simplex::default();
+        for (i, p) in points.iter().enumerate() {
+            s.push(Vertex {
+                point: p.clone(),
+                tag: Tag::explicit(i),
+            });
+        }
+        s.weights = vec![1.0 / points.len() as f64; points.len()];
+        s
+    }
+
+    fn norm2(x: &[f64]) -> f64 {
+        x.iter().map(|v| v * v).sum()
+    }
+
+    fn assert_close(got: f64, want: f64, tol: f64, what: &str) {
+        assert!(
+            (got - want).abs() <= tol,
+            "{what}: got {got}, want {want} (tolerance {tol})"
+        );
+    }
+
+    #[test]
+    fn segment_and_triangle() {
+        // Segment from (1,-1) to (1,1): closest point (1,0).
+        let mut s = simplex_of(&[vec![1.0, -1.0], vec![1.0, 1.0]]);
+        s.reduce_to_closest_point(1e-12).unwrap();
+        let x = s.point(2).unwrap();
+        assert_close(x[0], 1.0, 1e-12, "x");
+        assert_close(x[1], 0.0, 1e-12, "y");
+        // Segment whose closest point is an end: the other vertex is removed.
+        let mut s = simplex_of(&[vec![1.0, 1.0], vec![2.0, 3.0]]);
+        s.reduce_to_closest_point(1e-12).unwrap();
+        assert_eq!(s.len(), 1);
+        // Triangle around the origin: closest point is the origin itself.
+        let mut s = simplex_of(&[vec![1.0, 0.0], vec![-1.0, 1.0], vec![-1.0, -1.0]]);
+        s.reduce_to_closest_point(1e-12).unwrap();
+        assert!(norm2(&s.point(2).unwrap()) < 1e-24);
+        assert_eq!(s.len(), 3);
+    }
+
+    #[test]
+    fn exact_numbers() {
+        use num_rational::BigRational;
+        let r = |v: i64| BigRational::from_i64(v);
+        let mut s: Simplex<BigRational> = Simplex::default();
+        for (i, p) in [[3, 1], [1, 3], [5, 5]].iter().enumerate() {
+            s.push(Vertex {
+                point: vec![r(p[0]), r(p[1])],
+                tag: Tag::explicit(i),
+            });
+        }
+        s.weights = vec![BigRational::from_i64(1) / r(3); 3];
+        s.reduce_to_closest_point(0.0).unwrap();
+        // Closest point of the triangle is (2, 2), the middle of the first edge.
+        assert_eq!(s.point(2).unwrap(), vec![r(2), r(2)]);
+        assert_eq!(s.len(), 2);
+    }
+}
