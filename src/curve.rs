@@ -1,0 +1,1083 @@
+//! Implicit curves `f(x, y) = 0` and exact SVG paths along them.
+//!
+//! A border piece of a shape is described by a bivariate [`Polynomial`] `f` of degree at most
+//! [`MAX_DEGREE`]; the part of the level curve `f = 0` between two points is turned into SVG
+//! path commands by [`level_curve_path`]:
+//!
+//! * lines become one `L`,
+//! * circles and ellipses become exact `A` arcs ([`kurbo::SvgArc`]),
+//! * parabolas become one exact quadratic Bézier `Q` (a parabola arc *is* a quadratic Bézier),
+//! * hyperbolas, degenerate conics and curves of degree > 2 are traced numerically and fitted
+//!   by cubic Béziers `C` whose measured distance to the true curve is reported.
+//!
+//! All coordinates are absolute SVG coordinates, where pixel `(x, y)` is the unit square
+//! `[x, x+1] × [y, y+1]`. Distances are in pixels.
+
+use kurbo::{Arc, CubicBez, ParamCurve, ParamCurveNearest, PathEl, Point, QuadBez, SvgArc, Vec2};
+use std::f64::consts::{PI, TAU};
+
+/// The highest degree a [`Polynomial`] can have.
+pub const MAX_DEGREE: u32 = 6;
+
+/// Number of coefficients of a dense polynomial of degree [`MAX_DEGREE`].
+const N_COEFFS: usize = ((MAX_DEGREE + 1) * (MAX_DEGREE + 2) / 2) as usize;
+
+/// Guide points farther than this (in pixels) from the curve make [`level_curve_path`] fail.
+pub const GUIDE_MAX_DISTANCE: f64 = 2.0;
+
+/// Largest step (in pixels) of the numerical tracer used by [`level_curve_path`].
+const TRACE_STEP: f64 = 0.25;
+
+/// Tolerance (in pixels) used by [`PathCommand::to_path_els`] to approximate arcs by cubics.
+pub const ARC_FLATTEN_TOLERANCE: f64 = 1e-3;
+
+/// Index of the monomial `x^a y^b` in the dense triangular coefficient array.
+#[inline]
+fn index(a: u32, b: u32) -> usize {
+    let k = (a + b) as usize;
+    k * (k + 1) / 2 + b as usize
+}
+
+/// Binomial coefficient `n choose k` as `f64` (exact for `n ≤ MAX_DEGREE`).
+fn binomial(n: u32, k: u32) -> f64 {
+    let mut r = 1.0;
+    for i in 0..k {
+        r = r * f64::from(n - i) / f64::from(i + 1);
+    }
+    r
+}
+
+/// A bivariate polynomial `f(x, y) = Σ c_ab x^a y^b` of degree at most [`MAX_DEGREE`],
+/// with `f64` coefficients in absolute (SVG) coordinates.
+///
+/// The curve described is the zero set `f = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Polynomial {
+    /// Dense triangular storage, see [`index`].
+    coeffs: [f64; N_COEFFS],
+}
+
+impl Polynomial {
+    /// The polynomial `Σ c x^a y^b` over the given `(a, b, c)` terms (repeated monomials add up).
+    ///
+    /// Returns `None` if a term has degree `a + b > MAX_DEGREE` or a non-finite coefficient.
+    pub fn new(terms: &[(u32, u32, f64)]) -> Option<Polynomial> {
+        let mut coeffs = [0.0; N_COEFFS];
+        for &(a, b, c) in terms {
+            if a.checked_add(b)? > MAX_DEGREE || !c.is_finite() {
+                return None;
+            }
+            coeffs[index(a, b)] += c;
+        }
+        Some(Polynomial { coeffs }).filter(Polynomial::is_finite)
+    }
+
+    /// The polynomial `g(x, y) = Σ c_i (x − x0)^a_i (y − y0)^b_i − level`, expanded into
+    /// absolute coordinates with the binomial theorem, where `origin = (x0, y0)` and
+    /// `monomials[i] = (a_i, b_i)`, `coefficients[i] = c_i`.
+    ///
+    /// The recognizer works in local coordinates centred at a pixel; the exporter calls this
+    /// with `origin = (x0 + 0.5, y0 + 0.5)` to move to SVG space.
+    ///
+    /// Returns `None` if the two slices differ in length, a monomial has degree above
+    /// [`MAX_DEGREE`], or an input or an expanded coefficient is not finite.
+    pub fn from_local(
+        monomials: &[(u32, u32)],
+        coefficients: &[f64],
+        origin: Point,
+        level: f64,
+    ) -> Option<Polynomial> {
+        if monomials.len() != coefficients.len()
+            || !origin.is_finite()
+            || !level.is_finite()
+            || coefficients.iter().any(|c| !c.is_finite())
+        {
+            return None;
+        }
+        let mut coeffs = [0.0; N_COEFFS];
+        let mut xp = [1.0; MAX_DEGREE as usize + 1];
+        let mut yp = [1.0; MAX_DEGREE as usize + 1];
+        for k in 1..xp.len() {
+            xp[k] = xp[k - 1] * -origin.x;
+            yp[k] = yp[k - 1] * -origin.y;
+        }
+        for (&(a, b), &c) in monomials.iter().zip(coefficients) {
+            if a.checked_add(b)? > MAX_DEGREE {
+                return None;
+            }
+            // (x − x0)^a = Σ_i C(a, i) x^i (−x0)^(a−i), likewise for y.
+            for i in 0..=a {
+                let cx = c * binomial(a, i) * xp[(a - i) as usize];
+                for j in 0..=b {
+                    coeffs[index(i, j)] += cx * binomial(b, j) * yp[(b - j) as usize];
+                }
+            }
+        }
+        coeffs[0] -= level;
+        Some(Polynomial { coeffs }).filter(Polynomial::is_finite)
+    }
+
+    fn is_finite(&self) -> bool {
+        self.coeffs.iter().all(|c| c.is_finite())
+    }
+
+    /// The coefficient of `x^a y^b` (0 when `a + b > MAX_DEGREE`).
+    pub fn coefficient(&self, a: u32, b: u32) -> f64 {
+        match a.checked_add(b) {
+            Some(k) if k <= MAX_DEGREE => self.coeffs[index(a, b)],
+            _ => 0.0,
+        }
+    }
+
+    /// The non-zero terms `(a, b, c)` meaning `c x^a y^b`, by increasing total degree.
+    pub fn terms(&self) -> Vec<(u32, u32, f64)> {
+        let mut out = Vec::new();
+        for k in 0..=MAX_DEGREE {
+            for b in 0..=k {
+                let c = self.coeffs[index(k - b, b)];
+                if c != 0.0 {
+                    out.push((k - b, b, c));
+                }
+            }
+        }
+        out
+    }
+
+    /// The total degree: the largest `a + b` with a non-zero coefficient (0 for constants).
+    pub fn degree(&self) -> u32 {
+        (0..=MAX_DEGREE)
+            .rev()
+            .find(|&k| (0..=k).any(|b| self.coeffs[index(k - b, b)] != 0.0))
+            .unwrap_or(0)
+    }
+
+    fn powers(p: Point) -> ([f64; 7], [f64; 7]) {
+        let mut xp = [1.0; 7];
+        let mut yp = [1.0; 7];
+        for k in 1..7 {
+            xp[k] = xp[k - 1] * p.x;
+            yp[k] = yp[k - 1] * p.y;
+        }
+        (xp, yp)
+    }
+
+    /// The value `f(p)`.
+    pub fn eval(&self, p: Point) -> f64 {
+        let (xp, yp) = Self::powers(p);
+        let mut s = 0.0;
+        for k in 0..=MAX_DEGREE as usize {
+            for b in 0..=k {
+                s += self.coeffs[k * (k + 1) / 2 + b] * xp[k - b] * yp[b];
+            }
+        }
+        s
+    }
+
+    /// The gradient `∇f(p) = (∂f/∂x, ∂f/∂y)`.
+    pub fn gradient(&self, p: Point) -> Vec2 {
+        let (xp, yp) = Self::powers(p);
+        let (mut gx, mut gy) = (0.0, 0.0);
+        for k in 1..=MAX_DEGREE as usize {
+            for b in 0..=k {
+                let a = k - b;
+                let c = self.coeffs[k * (k + 1) / 2 + b];
+                if a > 0 {
+                    gx += c * a as f64 * xp[a - 1] * yp[b];
+                }
+                if b > 0 {
+                    gy += c * b as f64 * xp[a] * yp[b - 1];
+                }
+            }
+        }
+        Vec2::new(gx, gy)
+    }
+
+    /// The first-order (Sampson) distance estimate `|f(p)| / |∇f(p)|` from `p` to the curve.
+    ///
+    /// Infinite where the gradient vanishes and `f(p) ≠ 0`.
+    pub fn distance_estimate(&self, p: Point) -> f64 {
+        let v = self.eval(p).abs();
+        if v == 0.0 {
+            return 0.0;
+        }
+        v / self.gradient(p).hypot()
+    }
+
+    /// The conic `a x² + b xy + c y² + d x + e y + f`.
+    ///
+    /// Returns `None` if the degree is above 2.
+    pub fn as_conic(&self) -> Option<Conic> {
+        if self.degree() > 2 {
+            return None;
+        }
+        Some(Conic {
+            a: self.coefficient(2, 0),
+            b: self.coefficient(1, 1),
+            c: self.coefficient(0, 2),
+            d: self.coefficient(1, 0),
+            e: self.coefficient(0, 1),
+            f: self.coefficient(0, 0),
+        })
+    }
+}
+
+impl From<Conic> for Polynomial {
+    fn from(k: Conic) -> Polynomial {
+        let mut coeffs = [0.0; N_COEFFS];
+        coeffs[index(2, 0)] = k.a;
+        coeffs[index(1, 1)] = k.b;
+        coeffs[index(0, 2)] = k.c;
+        coeffs[index(1, 0)] = k.d;
+        coeffs[index(0, 1)] = k.e;
+        coeffs[index(0, 0)] = k.f;
+        Polynomial { coeffs }
+    }
+}
+
+/// The conic `a x² + b xy + c y² + d x + e y + f = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Conic {
+    /// Coefficient of `x²`.
+    pub a: f64,
+    /// Coefficient of `xy`.
+    pub b: f64,
+    /// Coefficient of `y²`.
+    pub c: f64,
+    /// Coefficient of `x`.
+    pub d: f64,
+    /// Coefficient of `y`.
+    pub e: f64,
+    /// Constant term.
+    pub f: f64,
+}
+
+/// The geometric kind of a [`Conic`], see [`Conic::classify`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ConicKind {
+    /// No quadratic part: `d x + e y + f = 0` with `(d, e) ≠ 0`.
+    Line,
+    /// An ellipse with equal radii.
+    Circle,
+    /// A non-degenerate real ellipse that is not a circle.
+    Ellipse,
+    /// A non-degenerate parabola.
+    Parabola,
+    /// A non-degenerate hyperbola.
+    Hyperbola,
+    /// Everything else: empty real locus, a single point, two crossing lines, two parallel
+    /// lines, a double line, or a constant (or non-finite) equation.
+    Degenerate,
+}
+
+/// Relative tolerance on the discriminant `b² − 4ac` against `b² + 4|ac|` (parabola test).
+const DISC_EPS: f64 = 1e-10;
+/// Relative tolerance on the centred constant term (degeneracy test of central conics).
+const CENTRE_EPS: f64 = 1e-10;
+/// Relative tolerance on `|a − c|` and `|b|` against `|a| + |c|` (circle test).
+const CIRCLE_EPS: f64 = 1e-12;
+/// Relative tolerance on the linear part along a parabola's axis (degeneracy test).
+const PARABOLA_EPS: f64 = 1e-10;
+
+/// The eigen-decomposition of a conic's quadratic part, plus its centre when central.
+struct Principal {
+    /// Angle of the first eigenvector `(cos θ, sin θ)`.
+    theta: f64,
+    /// Eigenvalue along `θ`.
+    l1: f64,
+    /// Eigenvalue along `θ + π/2`.
+    l2: f64,
+}
+
+impl Conic {
+    /// The conic with the given coefficients.
+    #[inline]
+    pub const fn new(a: f64, b: f64, c: f64, d: f64, e: f64, f: f64) -> Conic {
+        Conic { a, b, c, d, e, f }
+    }
+
+    fn is_finite(&self) -> bool {
+        [self.a, self.b, self.c, self.d, self.e, self.f]
+            .iter()
+            .all(|v| v.is_finite())
+    }
+
+    /// The value at `p`.
+    pub fn eval(&self, p: Point) -> f64 {
+        let (x, y) = (p.x, p.y);
+        self.a * x * x + self.b * x * y + self.c * y * y + self.d * x + self.e * y + self.f
+    }
+
+    /// The gradient at `p`.
+    pub fn gradient(&self, p: Point) -> Vec2 {
+        Vec2::new(
+            2.0 * self.a * p.x + self.b * p.y + self.d,
+            self.b * p.x + 2.0 * self.c * p.y + self.e,
+        )
+    }
+
+    /// The determinant of the symmetric matrix
+    /// `[[a, b/2, d/2], [b/2, c, e/2], [d/2, e/2, f]]`; zero exactly for degenerate conics.
+    pub fn determinant(&self) -> f64 {
+        let Conic { a, b, c, d, e, f } = *self;
+        a * (c * f - e * e / 4.0) - b / 2.0 * (b * f / 2.0 - e * d / 4.0)
+            + d / 2.0 * (b * e / 4.0 - c * d / 2.0)
+    }
+
+    /// Eigen-decomposition of `[[a, b/2], [b/2, c]]`: `λ1 = m + r` along `θ = ½ atan2(b, a − c)`,
+    /// `λ2 = m − r` along `θ + π/2`, with `m = (a + c)/2`, `r = hypot((a − c)/2, b/2)`.
+    fn principal(&self) -> Principal {
+        let m = 0.5 * (self.a + self.c);
+        let r = (0.5 * (self.a - self.c)).hypot(0.5 * self.b);
+        Principal {
+            theta: 0.5 * self.b.atan2(self.a - self.c),
+            l1: m + r,
+            l2: m - r,
+        }
+    }
+
+    /// Centre `(x0, y0)` (where the gradient vanishes) and the value there, for central
+    /// conics, together with the scale `|f| + (|d x0| + |e y0|)/2` of that value's terms.
+    fn centre(&self) -> Option<(Point, f64, f64)> {
+        let Conic { a, b, c, d, e, f } = *self;
+        let det2 = 4.0 * a * c - b * b;
+        if det2 == 0.0 {
+            return None;
+        }
+        let x0 = (b * e - 2.0 * c * d) / det2;
+        let y0 = (b * d - 2.0 * a * e) / det2;
+        let value = f + 0.5 * (d * x0 + e * y0);
+        let scale = f.abs() + 0.5 * ((d * x0).abs() + (e * y0).abs());
+        Some((Point::new(x0, y0), value, scale))
+            .filter(|(p, v, s)| p.is_finite() && v.is_finite() && s.is_finite())
+    }
+
+    /// The kind of conic.
+    ///
+    /// Tolerances (all relative, so that scaling the equation does not change the answer;
+    /// integer coefficients of moderate size are classified exactly):
+    /// * no quadratic part (`a = b = c = 0` exactly): [`ConicKind::Line`] if `(d, e) ≠ 0`;
+    /// * `|b² − 4ac| ≤ 1e-10 (b² + 4|ac|)`: parabola-like; it is [`ConicKind::Parabola`] unless
+    ///   the linear part across the axis, `|(d, e)·t|` (`t` the unit axis direction), is at most
+    ///   `1e-10 |(d, e)|` — then the 3×3 determinant vanishes: parallel or double lines, or empty;
+    /// * otherwise the conic is central; translating to the centre leaves the constant
+    ///   `f' = f + (d x0 + e y0)/2` (proportional to the 3×3 determinant), taken as zero when
+    ///   `|f'| ≤ 1e-10 (|f| + (|d x0| + |e y0|)/2)`. Then `b² − 4ac > 0` gives
+    ///   [`ConicKind::Hyperbola`] (or two crossing lines if `f' = 0`), and `b² − 4ac < 0` gives
+    ///   a real ellipse only when `f'` has the sign opposite to `a + c` (else the locus is empty
+    ///   or a single point). The ellipse is a [`ConicKind::Circle`] when
+    ///   `|a − c|, |b| ≤ 1e-12 (|a| + |c|)`, in particular when `a == c` and `b == 0`.
+    pub fn classify(&self) -> ConicKind {
+        if !self.is_finite() {
+            return ConicKind::Degenerate;
+        }
+        let Conic { a, b, c, d, e, .. } = *self;
+        if a == 0.0 && b == 0.0 && c == 0.0 {
+            return if d != 0.0 || e != 0.0 {
+                ConicKind::Line
+            } else {
+                ConicKind::Degenerate
+            };
+        }
+        let disc = b * b - 4.0 * a * c;
+        if disc.abs() <= DISC_EPS * (b * b + 4.0 * (a * c).abs()) {
+            return if self.parabola_frame().is_some() {
+                ConicKind::Parabola
+            } else {
+                ConicKind::Degenerate
+            };
+        }
+        let Some((_, value, scale)) = self.centre() else {
+            return ConicKind::Degenerate;
+        };
+        if value.abs() <= CENTRE_EPS * scale {
+            return ConicKind::Degenerate;
+        }
+        if disc > 0.0 {
+            return ConicKind::Hyperbola;
+        }
+        if value * (a + c) > 0.0 {
+            return ConicKind::Degenerate;
+        }
+        let s = a.abs() + c.abs();
+        if (a - c).abs() <= CIRCLE_EPS * s && b.abs() <= CIRCLE_EPS * s {
+            ConicKind::Circle
+        } else {
+            ConicKind::Ellipse
+        }
+    }
+
+    /// The centre, radii `(rx, ry)` and rotation angle `θ` of an ellipse or circle: the curve is
+    /// `{centre + R(θ) (rx cos φ, ry sin φ)}`, which is exactly the SVG arc convention
+    /// (`rx` along the axis rotated by `x_rotation = θ`). `θ ∈ (−π/2, π/2]`.
+    ///
+    /// Returns `None` unless [`Conic::classify`] gives `Circle` or `Ellipse`.
+    pub fn ellipse_params(&self) -> Option<(Point, Vec2, f64)> {
+        if !matches!(self.classify(), ConicKind::Circle | ConicKind::Ellipse) {
+            return None;
+        }
+        let (centre, value, _) = self.centre()?;
+        let pr = self.principal();
+        let rx = (-value / pr.l1).sqrt();
+        let ry = (-value / pr.l2).sqrt();
+        (rx.is_finite() && ry.is_finite() && rx > 0.0 && ry > 0.0).then_some((
+            centre,
+            Vec2::new(rx, ry),
+            pr.theta,
+        ))
+    }
+
+    /// Frame of a parabola: unit vector `n` across the axis, its eigenvalue `λ`, and the
+    /// components `D = (d, e)·n`, `E = (d, e)·t` with `t = n⊥` along the axis.
+    fn parabola_frame(&self) -> Option<(Vec2, f64, f64, f64)> {
+        let pr = self.principal();
+        let (theta, lambda) = if pr.l1.abs() >= pr.l2.abs() {
+            (pr.theta, pr.l1)
+        } else {
+            (pr.theta + 0.5 * PI, pr.l2)
+        };
+        let n = Vec2::from_angle(theta);
+        let t = n.turn_90();
+        let lin = Vec2::new(self.d, self.e);
+        let (dd, ee) = (lin.dot(n), lin.dot(t));
+        if lambda == 0.0 || ee.abs() <= PARABOLA_EPS * lin.hypot() || ee == 0.0 {
+            return None;
+        }
+        Some((n, lambda, dd, ee))
+    }
+
+    /// The vertex, the unit axis direction pointing into the parabola (towards the focus),
+    /// and the focal length `p` (vertex-to-focus distance; the parabola is `v = u² / (4p)` in
+    /// the frame of the vertex with `v` along the axis).
+    ///
+    /// Returns `None` unless [`Conic::classify`] gives `Parabola`.
+    pub fn parabola_params(&self) -> Option<(Point, Vec2, f64)> {
+        if self.classify() != ConicKind::Parabola {
+            return None;
+        }
+        let (n, lambda, dd, ee) = self.parabola_frame()?;
+        let t = n.turn_90();
+        // λ u² + D u + E v + f = 0 with u = n·p, v = t·p.
+        let u0 = -dd / (2.0 * lambda);
+        let v0 = -(lambda * u0 * u0 + dd * u0 + self.f) / ee;
+        let vertex = (n * u0 + t * v0).to_point();
+        let axis = if -lambda / ee > 0.0 { t } else { -t };
+        let p = (ee / (4.0 * lambda)).abs();
+        (vertex.is_finite() && p.is_finite()).then_some((vertex, axis, p))
+    }
+
+    /// The centre, semi-axes `(a, b)` (`a` transverse, through the vertices; `b` conjugate) and
+    /// the angle of the transverse axis: the curve is
+    /// `{centre + R(θ) (±a cosh s, b sinh s)}`; the branches are the two signs.
+    ///
+    /// Returns `None` unless [`Conic::classify`] gives `Hyperbola`.
+    pub fn hyperbola_params(&self) -> Option<(Point, Vec2, f64)> {
+        if self.classify() != ConicKind::Hyperbola {
+            return None;
+        }
+        let (centre, value, _) = self.centre()?;
+        let pr = self.principal();
+        // λ1 > 0 > λ2 in the frame rotated by θ: λ1 x'² + λ2 y'² + value = 0.
+        let (semi, angle) = if value < 0.0 {
+            (
+                Vec2::new((-value / pr.l1).sqrt(), (value / pr.l2).sqrt()),
+                pr.theta,
+            )
+        } else {
+            (
+                Vec2::new((-value / pr.l2).sqrt(), (value / pr.l1).sqrt()),
+                pr.theta + 0.5 * PI,
+            )
+        };
+        semi.is_finite().then_some((centre, semi, angle))
+    }
+}
+
+/// One SVG path command, in absolute coordinates; the start point is the end of the previous
+/// command.
+#[derive(Clone, Copy, Debug)]
+pub enum PathCommand {
+    /// `L x y`.
+    Line(Point),
+    /// `A rx ry x_rotation large_arc sweep x y`, exact elliptical arc.
+    Arc(SvgArc),
+    /// `Q x1 y1 x y`: control point, end point.
+    Quad(Point, Point),
+    /// `C x1 y1 x2 y2 x y`: two control points, end point.
+    Cubic(Point, Point, Point),
+}
+
+impl PartialEq for PathCommand {
+    fn eq(&self, other: &PathCommand) -> bool {
+        use PathCommand::*;
+        match (*self, *other) {
+            (Line(p), Line(q)) => p == q,
+            (Quad(a, p), Quad(b, q)) => a == b && p == q,
+            (Cubic(a1, a2, p), Cubic(b1, b2, q)) => a1 == b1 && a2 == b2 && p == q,
+            (Arc(a), Arc(b)) => {
+                a.from == b.from
+                    && a.to == b.to
+                    && a.radii == b.radii
+                    && a.x_rotation == b.x_rotation
+                    && a.large_arc == b.large_arc
+                    && a.sweep == b.sweep
+            }
+            _ => false,
+        }
+    }
+}
+
+impl PathCommand {
+    /// The end point.
+    pub fn end(&self) -> Point {
+        match *self {
+            PathCommand::Line(p) | PathCommand::Quad(_, p) | PathCommand::Cubic(_, _, p) => p,
+            PathCommand::Arc(a) => a.to,
+        }
+    }
+
+    /// Converts to kurbo path elements (without the initial `MoveTo`), starting at `start`.
+    ///
+    /// Arcs go through [`kurbo::Arc::from_svg_arc`] (with `from` replaced by `start`) and are
+    /// approximated by cubics within [`ARC_FLATTEN_TOLERANCE`]; an arc that SVG treats as a
+    /// straight line becomes a `LineTo`.
+    pub fn to_path_els(&self, start: Point) -> Vec<PathEl> {
+        match *self {
+            PathCommand::Line(p) => vec![PathEl::LineTo(p)],
+            PathCommand::Quad(c, p) => vec![PathEl::QuadTo(c, p)],
+            PathCommand::Cubic(c1, c2, p) => vec![PathEl::CurveTo(c1, c2, p)],
+            PathCommand::Arc(a) => {
+                let svg = SvgArc { from: start, ..a };
+                match Arc::from_svg_arc(&svg) {
+                    Some(arc) => arc.append_iter(ARC_FLATTEN_TOLERANCE).collect(),
+                    None => vec![PathEl::LineTo(a.to)],
+                }
+            }
+        }
+    }
+}
+
+/// Newton iteration along the gradient towards `f = 0`, starting at `p`.
+///
+/// Returns `None` if it leaves the disc of radius `max_distance` around `p`, meets a vanishing
+/// gradient off the curve, or does not converge.
+fn newton_to_curve(poly: &Polynomial, p: Point, max_distance: f64) -> Option<Point> {
+    let mut q = p;
+    for _ in 0..64 {
+        let v = poly.eval(q);
+        if v == 0.0 {
+            return Some(q);
+        }
+        let g = poly.gradient(q);
+        let g2 = g.hypot2();
+        if !(g2 > 0.0) || !g2.is_finite() || !v.is_finite() {
+            return None;
+        }
+        let step = g * (v / g2);
+        q -= step;
+        if (q - p).hypot() > max_distance {
+            return None;
+        }
+        if step.hypot() <= 1e-13 * (1.0 + q.to_vec2().hypot()) {
+            return Some(q);
+        }
+    }
+    (poly.distance_estimate(q) <= 1e-7).then_some(q)
+}
+
+/// The unit tangent `∇f⊥ / |∇f|` (rotated +90°), if the gradient does not vanish.
+fn unit_tangent(poly: &Polynomial, p: Point) -> Option<Vec2> {
+    let g = poly.gradient(p);
+    let n = g.hypot();
+    (n > 0.0 && n.is_finite()).then(|| Vec2::new(-g.y / n, g.x / n))
+}
+
+/// The point of the curve `poly = 0` closest to `point`, if within `max_distance`.
+///
+/// Newton steps along the gradient reach the curve; then the point slides along the tangent
+/// until `point − q` is normal to the curve (linear convergence, fast where the distance is
+/// small compared to the radius of curvature).
+///
+/// Returns `None` if no point of the curve is found within `max_distance`, or on non-finite
+/// input.
+pub fn project(poly: &Polynomial, point: Point, max_distance: f64) -> Option<Point> {
+    if !point.is_finite() || !(max_distance >= 0.0) {
+        return None;
+    }
+    let reach = 2.0 * max_distance + 1e-9;
+    let mut q = newton_to_curve(poly, point, reach)?;
+    let mut best = q;
+    let mut best_d = (q - point).hypot();
+    for _ in 0..100 {
+        let Some(t) = unit_tangent(poly, q) else {
+            break;
+        };
+        let s = (point - q).dot(t);
+        if s.abs() <= 1e-12 * (1.0 + best_d) {
+            break;
+        }
+        let Some(q2) = newton_to_curve(poly, q + t * s, reach) else {
+            break;
+        };
+        q = q2;
+        let d = (q - point).hypot();
+        if d < best_d {
+            best = q;
+            best_d = d;
+        }
+    }
+    (best_d <= max_distance).then_some(best)
+}
+
+/// The intersection point of `p = 0` and `q = 0` closest to `near`, within `max_distance`.
+///
+/// Runs Newton's method on the 2×2 system from `near`, from the projections of `near` on both
+/// curves and from 16 points on two circles around `near`; keeps the converged solutions
+/// (each curve within 1e-7 by [`Polynomial::distance_estimate`]).
+///
+/// Returns `None` if no intersection is found within `max_distance`, or on non-finite input.
+pub fn intersect_near(
+    p: &Polynomial,
+    q: &Polynomial,
+    near: Point,
+    max_distance: f64,
+) -> Option<Point> {
+    if !near.is_finite() || !(max_distance >= 0.0) || !max_distance.is_finite() {
+        return None;
+    }
+    let mut starts = vec![near];
+    starts.extend(project(p, near, max_distance));
+    starts.extend(project(q, near, max_distance));
+    for r in [0.5 * max_distance, max_distance] {
+        for k in 0..8 {
+            starts.push(near + Vec2::from_angle(f64::from(k) * PI / 4.0) * r);
+        }
+    }
+    let mut best: Option<(Point, f64)> = None;
+    for s in starts {
+        let Some(x) = newton_system(p, q, s, near, max_distance) else {
+            continue;
+        };
+        let d = (x - near).hypot();
+        if d <= max_distance && best.is_none_or(|(_, bd)| d < bd) {
+            best = Some((x, d));
+        }
+    }
+    best.map(|(x, _)| x)
+}
+
+fn newton_system(
+    p: &Polynomial,
+    q: &Polynomial,
+    start: Point,
+    near: Point,
+    max_distance: f64,
+) -> Option<Point> {
+    let mut x = start;
+    for _ in 0..80 {
+        let (fp, fq) = (p.eval(x), q.eval(x));
+        if fp == 0.0 && fq == 0.0 {
+            break;
+        }
+        let (gp, gq) = (p.gradient(x), q.gradient(x));
+        let det = gp.x * gq.y - gp.y * gq.x;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let step = Vec2::new((gq.y * fp - gp.y * fq) / det, (gp.x * fq - gq.x * fp) / det);
+        if !step.is_finite() {
+            return None;
+        }
+        x -= step;
+        if (x - near).hypot() > 2.0 * max_distance + 1e-9 {
+            return None;
+        }
+        if step.hypot() <= 1e-13 * (1.0 + x.to_vec2().hypot()) {
+            break;
+        }
+    }
+    (p.distance_estimate(x) <= 1e-7 && q.distance_estimate(x) <= 1e-7).then_some(x)
+}
+
+/// The part of the level curve `poly = 0` from `from` to `to`, as SVG path commands, with the
+/// measured maximal distance between the emitted path and the true curve (0 for the exact
+/// forms: lines, circular and elliptical arcs, parabola arcs).
+///
+/// `from` and `to` lie on the curve (within ~1e-6); `guide` are points near the curve (within
+/// [`GUIDE_MAX_DISTANCE`]), in path order, telling which part of the curve is meant: which way
+/// round a closed curve, which branch of a hyperbola. When `from == to` on a closed curve the
+/// whole curve is meant (for ellipses two arcs are emitted; for traced curves the guide must
+/// go round).
+///
+/// * degree 1: one [`PathCommand::Line`];
+/// * circle / ellipse: one exact [`PathCommand::Arc`] whose direction is the one agreeing best
+///   with the guide (angular distance of the guide points outside the arc plus backward
+///   motion between consecutive points; ties go to the shorter arc);
+/// * parabola: one exact [`PathCommand::Quad`] whose control point is the intersection of the
+///   tangents at `from` and `to`;
+/// * hyperbola (same branch), degenerate conics and degree > 2: the curve is traced from
+///   `from` to `to` through the guide points' projections (predictor along the tangent,
+///   Newton corrector, step ≤ 0.25 px), then fitted by cubic Béziers (Hermite with tangent
+///   lengths of a third of the arc length, subdivided until the distance to the true curve,
+///   measured both ways at samples with Newton projections, is at most `tolerance`).
+///
+/// Returns `None` for non-finite input, a non-positive `tolerance`, a constant polynomial,
+/// `from`/`to` not on the curve (within 0.01), a guide point whose projection fails or (for
+/// parabolas) lies farther than [`GUIDE_MAX_DISTANCE`] from the arc, points on different
+/// hyperbola branches, or a trace that does not reach `to`.
+pub fn level_curve_path(
+    poly: &Polynomial,
+    from: Point,
+    to: Point,
+    guide: &[Point],
+    tolerance: f64,
+) -> Option<(Vec<PathCommand>, f64)> {
+    if !from.is_finite()
+        || !to.is_finite()
+        || guide.iter().any(|g| !g.is_finite())
+        || !(tolerance > 0.0)
+        || !tolerance.is_finite()
+        || !poly.is_finite()
+    {
+        return None;
+    }
+    if poly.degree() == 0 {
+        return None;
+    }
+    if let Some(conic) = poly.as_conic() {
+        match conic.classify() {
+            ConicKind::Line => {
+                let cmds = if from == to {
+                    Vec::new()
+                } else {
+                    vec![PathCommand::Line(to)]
+                };
+                return Some((cmds, 0.0));
+            }
+            ConicKind::Circle | ConicKind::Ellipse => {
+                return ellipse_path(&conic, from, to, guide).map(|c| (c, 0.0));
+            }
+            ConicKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
+            ConicKind::Hyperbola => {
+                let (centre, _, angle) = conic.hyperbola_params()?;
+                let axis = Vec2::from_angle(angle);
+                let (s0, s1) = ((from - centre).dot(axis), (to - centre).dot(axis));
+                if s0 * s1 < 0.0 {
+                    return None;
+                }
+            }
+            ConicKind::Degenerate => {}
+        }
+    }
+    let trace = trace_curve(poly, from, to, guide)?;
+    Some(fit_cubics(poly, &trace, tolerance))
+}
+
+/// Exact elliptical arc(s) from `from` to `to`, going the way the guide says.
+fn ellipse_path(
+    conic: &Conic,
+    from: Point,
+    to: Point,
+    guide: &[Point],
+) -> Option<Vec<PathCommand>> {
+    let (centre, radii, theta) = conic.ellipse_params()?;
+    let rot = Vec2::from_angle(theta);
+    let angle = |p: Point| {
+        let v = p - centre;
+        let x = v.dot(rot);
+        let y = rot.cross(v);
+        (y / radii.y).atan2(x / radii.x)
+    };
+    let at = |phi: f64| {
+        let (s, c) = phi.sin_cos();
+        let v = Vec2::new(radii.x * c, radii.y * s);
+        centre + Vec2::new(v.x * rot.x - v.y * rot.y, v.x * rot.y + v.y * rot.x)
+    };
+    let full = (to - from).hypot() <= 1e-9 * (radii.x + radii.y);
+    let phi0 = angle(from);
+    let phi1 = angle(to);
+    let span_pos = if full {
+        TAU
+    } else {
+        (phi1 - phi0).rem_euclid(TAU)
+    };
+    let wrap = |x: f64| {
+        // into (−π, π]
+        let r = (x + PI).rem_euclid(TAU) - PI;
+        if r == -PI {
+            PI
+        } else {
+            r
+        }
+    };
+    let mut angles = vec![phi0];
+    angles.extend(guide.iter().map(|&g| angle(g)));
+    angles.push(if full { phi0 } else { phi1 });
+    let cost = |dir: f64| {
+        let span = if dir > 0.0 { span_pos } else { TAU - span_pos };
+        let mut c = 0.0;
+        // Angular distance of guide points outside the arc.
+        for &psi in &angles[1..angles.len() - 1] {
+            let u = (dir * (psi - phi0)).rem_euclid(TAU);
+            if u > span {
+                c += (u - span).min(TAU - u);
+            }
+        }
+        // Backward motion between consecutive points (not for the full turn's closing pair).
+        for w in angles.windows(2) {
+            c += (-dir * wrap(w[1] - w[0])).max(0.0);
+        }
+        c
+    };
+    let (cp, cn) = (cost(1.0), cost(-1.0));
+    let dir = if (cp - cn).abs() <= 1e-12 {
+        if full || span_pos <= PI {
+            1.0
+        } else {
+            -1.0
+        }
+    } else if cp < cn {
+        1.0
+    } else {
+        -1.0
+    };
+    let sweep = dir > 0.0;
+    if full {
+        let mid = at(phi0 + dir * PI);
+        let arc = |a: Point, b: Point| {
+            PathCommand::Arc(SvgArc {
+                from: a,
+                to: b,
+                radii,
+                x_rotation: theta,
+                large_arc: false,
+                sweep,
+            })
+        };
+        return Some(vec![arc(from, mid), arc(mid, to)]);
+    }
+    let span = if sweep { span_pos } else { TAU - span_pos };
+    Some(vec![PathCommand::Arc(SvgArc {
+        from,
+        to,
+        radii,
+        x_rotation: theta,
+        large_arc: span > PI,
+        sweep,
+    })])
+}
+
+/// The exact quadratic Bézier of the parabola arc from `from` to `to`.
+fn parabola_path(
+    conic: &Conic,
+    from: Point,
+    to: Point,
+    guide: &[Point],
+) -> Option<Vec<PathCommand>> {
+    if from == to {
+        return Some(Vec::new());
+    }
+    let (g0, g1) = (conic.gradient(from), conic.gradient(to));
+    // g0·(Q − from) = 0 and g1·(Q − to) = 0.
+    let det = g0.cross(g1);
+    if det.abs() <= 1e-14 * g0.hypot() * g1.hypot() {
+        return None;
+    }
+    let (r0, r1) = (g0.dot(from.to_vec2()), g1.dot(to.to_vec2()));
+    let ctrl = Point::new((r0 * g1.y - r1 * g0.y) / det, (g0.x * r1 - g1.x * r0) / det);
+    if !ctrl.is_finite() {
+        return None;
+    }
+    let quad = QuadBez::new(from, ctrl, to);
+    let guide_ok = guide
+        .iter()
+        .all(|&g| quad.nearest(g, 1e-9).distance_sq <= GUIDE_MAX_DISTANCE * GUIDE_MAX_DISTANCE);
+    guide_ok.then(|| vec![PathCommand::Quad(ctrl, to)])
+}
+
+/// A traced polyline on the curve with unit tangents in the direction of travel.
+struct Trace {
+    pts: Vec<Point>,
+    tans: Vec<Vec2>,
+}
+
+/// Distance from `p` to the segment `[a, b]`.
+fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let l2 = ab.hypot2();
+    let t = if l2 > 0.0 {
+        ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + ab * t)).hypot()
+}
+
+/// Marches along the curve from `from` to `to`, passing the projections of the guide points.
+fn trace_curve(poly: &Polynomial, from: Point, to: Point, guide: &[Point]) -> Option<Trace> {
+    let start = project(poly, from, 0.01)?;
+    let end = project(poly, to, 0.01)?;
+    let targets: Vec<Point> = guide
+        .iter()
+        .map(|&g| project(poly, g, GUIDE_MAX_DISTANCE))
+        .collect::<Option<_>>()?;
+    let mut guide_len = 0.0;
+    let mut prev = from;
+    for &p in guide.iter().chain(std::iter::once(&to)) {
+        guide_len += (p - prev).hypot();
+        prev = p;
+    }
+    if from == to && targets.is_empty() {
+        return Some(Trace {
+            pts: vec![from],
+            tans: vec![Vec2::ZERO],
+        });
+    }
+    // Guide points close to the ends may project just outside the piece: not required.
+    let mut visited: Vec<bool> = targets
+        .iter()
+        .map(|&w| (w - start).hypot() <= 1.0 || (w - end).hypot() <= 1.0)
+        .collect();
+    // Initial orientation: towards the first waypoint not too close to the start.
+    let first = targets
+        .iter()
+        .chain(std::iter::once(&end))
+        .find(|&&w| (w - start).hypot() > 0.5)
+        .or_else(|| {
+            targets
+                .iter()
+                .chain(std::iter::once(&end))
+                .max_by(|a, b| (**a - start).hypot().total_cmp(&(**b - start).hypot()))
+        })
+        .copied()?;
+    let towards = first - start;
+    let mut t = match unit_tangent(poly, start) {
+        Some(t) if t.dot(towards) >= 0.0 => t,
+        Some(t) => -t,
+        None => towards.normalize(),
+    };
+    if !t.is_finite() {
+        return None;
+    }
+    let mut pts = vec![from];
+    let mut tans = vec![t];
+    let mut p = start;
+    let mut h = TRACE_STEP;
+    let mut travelled = 0.0;
+    let max_len = 3.0 * guide_len + 20.0;
+    let mut iterations = 0usize;
+    loop {
+        iterations += 1;
+        if travelled > max_len || iterations > 1_000_000 {
+            return None;
+        }
+        let q0 = p + t * h;
+        let accepted = newton_to_curve(poly, q0, h).and_then(|q| {
+            let tq = match unit_tangent(poly, q) {
+                Some(tq) if tq.dot(t) >= 0.0 => tq,
+                Some(tq) => -tq,
+                None => t,
+            };
+            let ok =
+                (q - q0).hypot() <= 0.3 * h && tq.dot(t) >= 0.3f64.cos() && (q - p).dot(t) > 0.0;
+            ok.then_some((q, tq))
+        });
+        let Some((q, tq)) = accepted else {
+            h *= 0.5;
+            if h < 1e-9 {
+                return None;
+            }
+            continue;
+        };
+        let near = (0.2 * h).max(1e-6);
+        for (w, v) in targets.iter().zip(visited.iter_mut()) {
+            if !*v && segment_distance(*w, p, q) <= near {
+                *v = true;
+            }
+        }
+        let step_len = (q - p).hypot();
+        if visited.iter().all(|&v| v)
+            && travelled + step_len >= 0.5 * guide_len
+            && segment_distance(end, p, q) <= near
+        {
+            let t_end = match unit_tangent(poly, end) {
+                Some(te) if te.dot(tq) >= 0.0 => te,
+                Some(te) => -te,
+                None => tq,
+            };
+            pts.push(to);
+            tans.push(t_end);
+            return Some(Trace { pts, tans });
+        }
+        travelled += step_len;
+        pts.push(q);
+        tans.push(tq);
+        p = q;
+        t = tq;
+        h = (1.5 * h).min(TRACE_STEP);
+    }
+}
+
+/// Hermite cubic over the trace points `i..=j`, tangent lengths a third of the arc length.
+fn hermite(trace: &Trace, i: usize, j: usize) -> CubicBez {
+    let len: f64 = trace.pts[i..=j]
+        .windows(2)
+        .map(|w| (w[1] - w[0]).hypot())
+        .sum();
+    let (p0, p3) = (trace.pts[i], trace.pts[j]);
+    CubicBez::new(
+        p0,
+        p0 + trace.tans[i] * (len / 3.0),
+        p3 - trace.tans[j] * (len / 3.0),
+        p3,
+    )
+}
+
+/// Distance between a cubic and the curve: cubic samples projected onto the curve, and trace
+/// points `i..=j` to the cubic; the maximum of both.
+fn cubic_error(
+    poly: &Polynomial,
+    c: &CubicBez,
+    trace: &Trace,
+    i: usize,
+    j: usize,
+    tol: f64,
+) -> f64 {
+    let mut err: f64 = 0.0;
+    const N: usize = 24;
+    for k in 1..N {
+        let s = c.eval(k as f64 / N as f64);
+        match project(poly, s, 4.0 * tol + 1.0) {
+            Some(q) => err = err.max((q - s).hypot()),
+            None => return f64::INFINITY,
+        }
+    }
+    for &p in &trace.pts[i + 1..j] {
+        err = err.max(c.nearest(p, 1e-9).distance_sq.sqrt());
+    }
+    err
+}
+
+/// Piecewise cubic fit of a trace within `tol`; returns the commands and the maximal error.
+fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, f64) {
+    let n = trace.pts.len();
+    if n < 2 {
+        return (Vec::new(), 0.0);
+    }
+    let mut out = Vec::new();
+    let mut max_err: f64 = 0.0;
+    // Ranges to fit, processed front to back.
+    let mut stack = vec![(0, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        let c = hermite(trace, i, j);
+        let err = cubic_error(poly, &c, trace, i, j, tol);
+        if err <= tol || j - i < 2 {
+            max_err = max_err.max(err);
+            out.push(PathCommand::Cubic(c.p1, c.p2, c.p3));
+        } else {
+            let m = (i + j) / 2;
+            stack.push((m, j));
+            stack.push((i, m));
+        }
+    }
+    (out, max_err)
+}
