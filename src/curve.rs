@@ -569,7 +569,7 @@ fn newton_to_curve(poly: &Polynomial, p: Point, max_distance: f64) -> Option<Poi
         }
         let g = poly.gradient(q);
         let g2 = g.hypot2();
-        if !(g2 > 0.0) || !g2.is_finite() || !v.is_finite() {
+        if g2 <= 0.0 || !g2.is_finite() || !v.is_finite() {
             return None;
         }
         let step = g * (v / g2);
@@ -600,7 +600,7 @@ fn unit_tangent(poly: &Polynomial, p: Point) -> Option<Vec2> {
 /// Returns `None` if no point of the curve is found within `max_distance`, or on non-finite
 /// input.
 pub fn project(poly: &Polynomial, point: Point, max_distance: f64) -> Option<Point> {
-    if !point.is_finite() || !(max_distance >= 0.0) {
+    if !point.is_finite() || max_distance.is_nan() || max_distance < 0.0 {
         return None;
     }
     let reach = 2.0 * max_distance + 1e-9;
@@ -641,7 +641,7 @@ pub fn intersect_near(
     near: Point,
     max_distance: f64,
 ) -> Option<Point> {
-    if !near.is_finite() || !(max_distance >= 0.0) || !max_distance.is_finite() {
+    if !near.is_finite() || max_distance < 0.0 || !max_distance.is_finite() {
         return None;
     }
     let mut starts = vec![near];
@@ -705,7 +705,7 @@ fn newton_system(
 /// `from` and `to` lie on the curve (within ~1e-6); `guide` are points near the curve (within
 /// [`GUIDE_MAX_DISTANCE`]), in path order, telling which part of the curve is meant: which way
 /// round a closed curve, which branch of a hyperbola. When `from == to` on a closed curve the
-/// whole curve is meant (for ellipses two arcs are emitted; for traced curves the guide must
+/// whole curve is meant (for ellipses two arcs are emitted, of a third and two thirds of a turn; for traced curves the guide must
 /// go round).
 ///
 /// * degree 1: one [`PathCommand::Line`];
@@ -734,7 +734,7 @@ pub fn level_curve_path(
     if !from.is_finite()
         || !to.is_finite()
         || guide.iter().any(|g| !g.is_finite())
-        || !(tolerance > 0.0)
+        || tolerance <= 0.0
         || !tolerance.is_finite()
         || !poly.is_finite()
     {
@@ -813,7 +813,11 @@ fn ellipse_path(
     angles.extend(guide.iter().map(|&g| angle(g)));
     angles.push(if full { phi0 } else { phi1 });
     let cost = |dir: f64| {
-        let span = if dir > 0.0 { span_pos } else { TAU - span_pos };
+        let span = if full || dir > 0.0 {
+            span_pos
+        } else {
+            TAU - span_pos
+        };
         let mut c = 0.0;
         // Angular distance of guide points outside the arc.
         for &psi in &angles[1..angles.len() - 1] {
@@ -842,18 +846,19 @@ fn ellipse_path(
     };
     let sweep = dir > 0.0;
     if full {
-        let mid = at(phi0 + dir * PI);
-        let arc = |a: Point, b: Point| {
+        // Not two half turns: an SVG arc whose chord is a diameter is ill-conditioned.
+        let mid = at(phi0 + dir * TAU / 3.0);
+        let arc = |a: Point, b: Point, large_arc: bool| {
             PathCommand::Arc(SvgArc {
                 from: a,
                 to: b,
                 radii,
                 x_rotation: theta,
-                large_arc: false,
+                large_arc,
                 sweep,
             })
         };
-        return Some(vec![arc(from, mid), arc(mid, to)]);
+        return Some(vec![arc(from, mid, false), arc(mid, to, true)]);
     }
     let span = if sweep { span_pos } else { TAU - span_pos };
     Some(vec![PathCommand::Arc(SvgArc {
@@ -1080,4 +1085,759 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
         }
     }
     (out, max_err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Small deterministic xorshift generator, so that tests need no extra crate.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            lo + (hi - lo) * self.next()
+        }
+    }
+
+    #[track_caller]
+    fn assert_close(actual: f64, expected: f64, tol: f64, what: &str) {
+        assert!(
+            (actual - expected).abs() <= tol,
+            "{what}: got {actual}, expected {expected} (difference {}, tolerance {tol})",
+            (actual - expected).abs()
+        );
+    }
+
+    #[track_caller]
+    fn assert_le(value: f64, bound: f64, what: &str) {
+        assert!(value <= bound, "{what}: got {value}, bound {bound}");
+    }
+
+    #[track_caller]
+    fn assert_point_close(actual: Point, expected: Point, tol: f64, what: &str) {
+        let d = (actual - expected).hypot();
+        assert!(
+            d <= tol,
+            "{what}: got {actual:?}, expected {expected:?} (distance {d}, tolerance {tol})"
+        );
+    }
+
+    /// The ellipse with centre `c`, radii `rx, ry`, rotation `th`, times `scale`.
+    fn ellipse_conic(c: Point, rx: f64, ry: f64, th: f64, scale: f64) -> Conic {
+        let (s, co) = th.sin_cos();
+        let (ia, ib) = (1.0 / (rx * rx), 1.0 / (ry * ry));
+        let a = co * co * ia + s * s * ib;
+        let b = 2.0 * co * s * (ia - ib);
+        let cc = s * s * ia + co * co * ib;
+        let d = -2.0 * a * c.x - b * c.y;
+        let e = -b * c.x - 2.0 * cc * c.y;
+        let f = a * c.x * c.x + b * c.x * c.y + cc * c.y * c.y - 1.0;
+        Conic::new(
+            a * scale,
+            b * scale,
+            cc * scale,
+            d * scale,
+            e * scale,
+            f * scale,
+        )
+    }
+
+    fn ellipse_point(c: Point, rx: f64, ry: f64, th: f64, phi: f64) -> Point {
+        let v = Vec2::new(rx * phi.cos(), ry * phi.sin());
+        let (s, co) = th.sin_cos();
+        c + Vec2::new(co * v.x - s * v.y, s * v.x + co * v.y)
+    }
+
+    fn round_conic(k: Conic) -> Conic {
+        Conic::new(
+            k.a.round(),
+            k.b.round(),
+            k.c.round(),
+            k.d.round(),
+            k.e.round(),
+            k.f.round(),
+        )
+    }
+
+    /// Points of the path every `1/n` of each command's parameter (arcs via kurbo).
+    fn sample_path(start: Point, cmds: &[PathCommand], n: usize) -> Vec<Point> {
+        let mut out = vec![start];
+        let mut cur = start;
+        for cmd in cmds {
+            for k in 1..=n {
+                let t = k as f64 / n as f64;
+                out.push(match *cmd {
+                    PathCommand::Line(p) => cur.lerp(p, t),
+                    PathCommand::Quad(c, p) => QuadBez::new(cur, c, p).eval(t),
+                    PathCommand::Cubic(c1, c2, p) => CubicBez::new(cur, c1, c2, p).eval(t),
+                    PathCommand::Arc(a) => Arc::from_svg_arc(&a).unwrap().eval(t),
+                });
+            }
+            cur = cmd.end();
+        }
+        out
+    }
+
+    fn min_distance(p: Point, pts: &[Point]) -> f64 {
+        pts.windows(2)
+            .map(|w| segment_distance(p, w[0], w[1]))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    // ---------------------------------------------------------------- polynomials
+
+    #[test]
+    fn from_local_agrees_with_direct_evaluation() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let mut worst: f64 = 0.0;
+        for _ in 0..200 {
+            let n = 1 + (rng.next() * 8.0) as usize;
+            let monomials: Vec<(u32, u32)> = (0..n)
+                .map(|_| {
+                    let k = (rng.next() * 7.0) as u32;
+                    let b = (rng.next() * (k + 1) as f64) as u32;
+                    (k - b, b)
+                })
+                .collect();
+            let coefficients: Vec<f64> = (0..n).map(|_| rng.range(-20.0, 20.0).round()).collect();
+            let origin = Point::new(
+                rng.range(0.0, 100.0).floor() + 0.5,
+                rng.range(0.0, 100.0).floor() + 0.5,
+            );
+            let level = rng.range(-50.0, 50.0).round();
+            let poly = Polynomial::from_local(&monomials, &coefficients, origin, level).unwrap();
+            for _ in 0..10 {
+                let p = origin + Vec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+                let (dx, dy) = (p.x - origin.x, p.y - origin.y);
+                let mut direct = -level;
+                let mut scale = level.abs();
+                for (&(a, b), &c) in monomials.iter().zip(&coefficients) {
+                    let term = c * dx.powi(a as i32) * dy.powi(b as i32);
+                    direct += term;
+                    // Magnitude of the absolute-coordinate expansion, for the rounding bound.
+                    scale += c.abs()
+                        * (p.x.abs() + origin.x).powi(a as i32)
+                        * (p.y.abs() + origin.y).powi(b as i32);
+                }
+                let got = poly.eval(p);
+                worst = worst.max((got - direct).abs() / scale);
+                assert_close(got, direct, 1e-13 * scale, "from_local eval");
+            }
+        }
+        eprintln!("from_local: worst error relative to term scale {worst:e}");
+    }
+
+    #[test]
+    fn polynomial_basics() {
+        let p = Polynomial::new(&[(2, 0, 1.0), (0, 2, 1.0), (0, 0, -25.0), (1, 1, 0.0)]).unwrap();
+        assert_eq!(p.degree(), 2);
+        assert_eq!(p.terms(), vec![(0, 0, -25.0), (2, 0, 1.0), (0, 2, 1.0)]);
+        assert_close(p.eval(Point::new(3.0, 4.0)), 0.0, 0.0, "on circle");
+        let g = p.gradient(Point::new(3.0, 4.0));
+        assert_point_close(g.to_point(), Point::new(6.0, 8.0), 0.0, "gradient");
+        assert_eq!(Polynomial::new(&[(7, 0, 1.0)]), None);
+        assert_eq!(Polynomial::new(&[(1, 0, f64::NAN)]), None);
+        assert_eq!(
+            Polynomial::from_local(&[(1, 0)], &[1.0, 2.0], Point::ZERO, 0.0),
+            None
+        );
+        assert_eq!(
+            Polynomial::from_local(&[(1, 0)], &[1.0], Point::new(f64::INFINITY, 0.0), 0.0),
+            None
+        );
+        assert_eq!(Polynomial::new(&[(0, 0, 3.0)]).unwrap().degree(), 0);
+        // Gradient by finite differences on a sextic.
+        let q = Polynomial::new(&[
+            (6, 0, 0.5),
+            (3, 3, -1.0),
+            (1, 4, 2.0),
+            (0, 1, 3.0),
+            (0, 0, 1.0),
+        ])
+        .unwrap();
+        let x = Point::new(0.7, -1.3);
+        let h = 1e-6;
+        let g = q.gradient(x);
+        let gx = (q.eval(x + Vec2::new(h, 0.0)) - q.eval(x - Vec2::new(h, 0.0))) / (2.0 * h);
+        let gy = (q.eval(x + Vec2::new(0.0, h)) - q.eval(x - Vec2::new(0.0, h))) / (2.0 * h);
+        assert_close(g.x, gx, 1e-6, "df/dx");
+        assert_close(g.y, gy, 1e-6, "df/dy");
+        assert_eq!(q.as_conic(), None);
+    }
+
+    // ---------------------------------------------------------------- classification
+
+    #[test]
+    fn classify_known_conics() {
+        use ConicKind::*;
+        // (x − 3)² + (y + 2)² = 25, and scaled.
+        let circle = Conic::new(1.0, 0.0, 1.0, -6.0, 4.0, -12.0);
+        assert_eq!(circle.classify(), Circle);
+        let scaled = Conic::new(7.0, 0.0, 7.0, -42.0, 28.0, -84.0);
+        assert_eq!(scaled.classify(), Circle);
+        let (c, r, _) = circle.ellipse_params().unwrap();
+        assert_point_close(c, Point::new(3.0, -2.0), 1e-12, "circle centre");
+        assert_close(r.x, 5.0, 1e-12, "circle rx");
+        assert_close(r.y, 5.0, 1e-12, "circle ry");
+        // Integer rotated ellipse 5x² + 6xy + 5y² = 8 (45°, radii 1 and 2).
+        assert_eq!(
+            Conic::new(5.0, 6.0, 5.0, 0.0, 0.0, -8.0).classify(),
+            Ellipse
+        );
+        // Rotated ellipses of several angles and aspect ratios, integer-scaled.
+        for (k, &(rx, ry)) in [(10.0, 4.0), (7.0, 6.5), (30.0, 3.0), (5.0, 5.5)]
+            .iter()
+            .enumerate()
+        {
+            for th in [0.0, 0.3, 1.0, 2.2, -0.7] {
+                let centre = Point::new(40.0 + k as f64, 17.0);
+                let e = round_conic(ellipse_conic(centre, rx, ry, th, 1e6));
+                assert_eq!(e.classify(), Ellipse, "ellipse {rx} {ry} {th}: {e:?}");
+            }
+        }
+        // Parabolas: (x + y)² − 8x + 8y = 0, y = x²/4 and its rotations.
+        assert_eq!(
+            Conic::new(1.0, 2.0, 1.0, -8.0, 8.0, 0.0).classify(),
+            Parabola
+        );
+        assert_eq!(
+            Conic::new(1.0, 0.0, 0.0, 0.0, -4.0, 0.0).classify(),
+            Parabola
+        );
+        for th in [0.1, 0.5, 1.3, 2.0, 3.0] {
+            let k = rotated_parabola(th, Point::new(5.0, -3.0));
+            assert_eq!(k.classify(), Parabola, "parabola {th}: {k:?}");
+        }
+        // Hyperbolas.
+        assert_eq!(
+            Conic::new(0.0, 1.0, 0.0, 0.0, 0.0, -1.0).classify(),
+            Hyperbola
+        );
+        assert_eq!(
+            Conic::new(1.0, 0.0, -1.0, 0.0, 0.0, -1.0).classify(),
+            Hyperbola
+        );
+        assert_eq!(
+            Conic::new(4.0, 0.0, -9.0, -8.0, 36.0, -68.0).classify(),
+            Hyperbola
+        );
+        // Degenerate: crossing lines, (x − y − 1)(2x + y + 3), parallel lines, double line,
+        // empty, point, constant.
+        assert_eq!(
+            Conic::new(1.0, 0.0, -1.0, 0.0, 0.0, 0.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(2.0, -1.0, -1.0, 1.0, -4.0, -3.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(1.0, 2.0, 1.0, 0.0, 0.0, -1.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(1.0, -2.0, 1.0, 0.0, 0.0, 0.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, 1.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, 0.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(1.0, 2.0, 1.0, 2.0, 2.0, 1.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(0.0, 0.0, 0.0, 0.0, 0.0, 1.0).classify(),
+            Degenerate
+        );
+        assert_eq!(
+            Conic::new(0.0, 0.0, 0.0, f64::NAN, 0.0, 1.0).classify(),
+            Degenerate
+        );
+        // Lines.
+        assert_eq!(Conic::new(0.0, 0.0, 0.0, 1.0, -2.0, 5.0).classify(), Line);
+        for k in [
+            Conic::new(1.0, 0.0, -1.0, 0.0, 0.0, 0.0),
+            Conic::new(2.0, -1.0, -1.0, 1.0, -4.0, -3.0),
+            Conic::new(1.0, -2.0, 1.0, 0.0, 0.0, 0.0),
+        ] {
+            assert_close(k.determinant(), 0.0, 0.0, "degenerate determinant");
+        }
+        assert!(circle.determinant() != 0.0);
+    }
+
+    /// y' = x'²/4 (focal length 1), rotated by `th`, vertex at `v`, times 4.
+    fn rotated_parabola(th: f64, v: Point) -> Conic {
+        // x' = cos(x − vx) + sin(y − vy), y' = −sin(x − vx) + cos(y − vy); x'² − 4 y' = 0.
+        let (s, c) = th.sin_cos();
+        let poly = Polynomial::from_local(
+            &[(2, 0), (1, 1), (0, 2), (1, 0), (0, 1)],
+            &[c * c, 2.0 * c * s, s * s, 4.0 * s, -4.0 * c],
+            v,
+            0.0,
+        )
+        .unwrap();
+        poly.as_conic().unwrap()
+    }
+
+    #[test]
+    fn parabola_and_hyperbola_params() {
+        for th in [0.0, 0.4, 1.7, -2.5] {
+            let v = Point::new(5.0, -3.0);
+            let k = rotated_parabola(th, v);
+            let (vertex, axis, p) = k.parabola_params().unwrap();
+            assert_point_close(vertex, v, 1e-9, "parabola vertex");
+            // Opens towards +y' = (−sin, cos).
+            assert_point_close(
+                axis.to_point(),
+                Point::new(-th.sin(), th.cos()),
+                1e-9,
+                "parabola axis",
+            );
+            assert_close(p, 1.0, 1e-9, "focal length");
+        }
+        // (x − 1)²/9 − (y − 2)²/4 = 1 → 4x² − 9y² − 8x + 36y − 68 = 0.
+        let h = Conic::new(4.0, 0.0, -9.0, -8.0, 36.0, -68.0);
+        let (c, semi, angle) = h.hyperbola_params().unwrap();
+        assert_point_close(c, Point::new(1.0, 2.0), 1e-12, "hyperbola centre");
+        assert_close(semi.x, 3.0, 1e-12, "transverse");
+        assert_close(semi.y, 2.0, 1e-12, "conjugate");
+        assert_close(angle.sin(), 0.0, 1e-12, "transverse along x");
+        // Swapped: (y − 2)²/4 − (x − 1)²/9 = 1.
+        let h2 = Conic::new(-4.0, 0.0, 9.0, 8.0, -36.0, 68.0 - 72.0);
+        let (c, semi, angle) = h2.hyperbola_params().unwrap();
+        assert_point_close(c, Point::new(1.0, 2.0), 1e-12, "hyperbola centre");
+        assert_close(semi.x, 2.0, 1e-12, "transverse");
+        assert_close(semi.y, 3.0, 1e-12, "conjugate");
+        assert_close(angle.cos(), 0.0, 1e-12, "transverse along y");
+        assert_eq!(h.ellipse_params(), None);
+        assert_eq!(h.parabola_params(), None);
+    }
+
+    #[test]
+    fn ellipse_params_recover_ellipses() {
+        let mut rng = Rng(0xfeed_beef_1234_5678);
+        let mut worst: f64 = 0.0;
+        for _ in 0..300 {
+            let centre = Point::new(rng.range(0.0, 300.0), rng.range(0.0, 300.0));
+            let (rx, ry) = (rng.range(1.0, 80.0), rng.range(1.0, 80.0));
+            let th = rng.range(-PI, PI);
+            let scale = rng.range(0.1, 1e4);
+            let k = ellipse_conic(centre, rx, ry, th, scale);
+            let (c, r, a) = k
+                .ellipse_params()
+                .unwrap_or_else(|| panic!("not an ellipse: {k:?}"));
+            assert_point_close(c, centre, 1e-8 * (1.0 + centre.to_vec2().hypot()), "centre");
+            let (lo, hi) = (rx.min(ry), rx.max(ry));
+            assert_close(r.x.min(r.y), lo, 1e-8 * hi, "small radius");
+            assert_close(r.x.max(r.y), hi, 1e-8 * hi, "large radius");
+            // As point sets: the recovered ellipse lies on the conic.
+            let poly = Polynomial::from(k);
+            for i in 0..32 {
+                let p = ellipse_point(c, r.x, r.y, a, i as f64 * TAU / 32.0);
+                let d = poly.distance_estimate(p);
+                worst = worst.max(d);
+                assert_le(d, 1e-9 * hi, "recovered ellipse on conic");
+            }
+        }
+        eprintln!("ellipse_params: worst |f|/|grad f| on recovered ellipse {worst:e}");
+    }
+
+    // ---------------------------------------------------------------- arcs
+
+    #[test]
+    fn ellipse_arcs_go_the_guided_way() {
+        let mut rng = Rng(0x0bad_cafe_dead_f00d);
+        let mut worst: f64 = 0.0;
+        for case in 0..400 {
+            let centre = Point::new(rng.range(20.0, 300.0), rng.range(20.0, 300.0));
+            let (rx, ry) = (rng.range(3.0, 60.0), rng.range(3.0, 60.0));
+            let th = rng.range(-PI, PI);
+            let mut k = ellipse_conic(centre, rx, ry, th, rx * ry);
+            if case % 4 == 0 {
+                k = round_conic(ellipse_conic(centre, rx, ry, th, 1e6));
+            }
+            let poly = Polynomial::from(k);
+            // The intended arc, in the recovered parametrisation (robust to the rounding).
+            let (c, r, a) = k.ellipse_params().unwrap();
+            let phi0 = rng.range(-PI, PI);
+            let magnitude = rng.range(0.1, TAU - 0.1);
+            let sweep = if case % 2 == 0 { magnitude } else { -magnitude };
+            let from = ellipse_point(c, r.x, r.y, a, phi0);
+            let to = ellipse_point(c, r.x, r.y, a, phi0 + sweep);
+            // Guide: pixel-like points along the intended arc, up to 0.4 px off the curve.
+            let n_guide = ((magnitude * r.x.max(r.y)) as usize).clamp(1, 200);
+            let guide: Vec<Point> = (0..n_guide)
+                .map(|i| {
+                    let phi = phi0 + sweep * (i as f64 + 0.5) / n_guide as f64;
+                    let p = ellipse_point(c, r.x, r.y, a, phi);
+                    let n = poly.gradient(p).normalize();
+                    p + n * rng.range(-0.4, 0.4)
+                })
+                .collect();
+            let (cmds, err) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+            assert_eq!(err, 0.0);
+            assert_eq!(cmds.len(), 1);
+            let PathCommand::Arc(svg) = cmds[0] else {
+                panic!("expected an arc, got {cmds:?}");
+            };
+            let arc = Arc::from_svg_arc(&svg).unwrap();
+            assert_close(
+                arc.sweep_angle,
+                sweep,
+                1e-6,
+                "sweep angle (direction and size)",
+            );
+            for i in 0..=64 {
+                let p = arc.eval(i as f64 / 64.0);
+                let d = poly.distance_estimate(p);
+                worst = worst.max(d);
+                assert_le(d, 1e-6, "arc sample on the conic");
+            }
+            let samples = sample_path(from, &cmds, 256);
+            for g in &guide {
+                assert_le(min_distance(*g, &samples), 0.45, "guide near the arc");
+            }
+        }
+        eprintln!("ellipse arcs: worst |f|/|grad f| of arc samples {worst:e}");
+    }
+
+    #[test]
+    fn full_turn_emits_two_arcs() {
+        let centre = Point::new(50.0, 40.0);
+        let k = ellipse_conic(centre, 20.0, 8.0, 0.5, 160.0);
+        let poly = Polynomial::from(k);
+        let (c, r, a) = k.ellipse_params().unwrap();
+        for dir in [1.0, -1.0] {
+            let from = ellipse_point(c, r.x, r.y, a, 1.0);
+            let guide: Vec<Point> = (1..40)
+                .map(|i| ellipse_point(c, r.x, r.y, a, 1.0 + dir * TAU * i as f64 / 40.0))
+                .collect();
+            let (cmds, _) = level_curve_path(&poly, from, from, &guide, 0.05).unwrap();
+            assert_eq!(cmds.len(), 2);
+            let mut total = 0.0;
+            let mut cur = from;
+            for cmd in &cmds {
+                let PathCommand::Arc(svg) = *cmd else {
+                    panic!("{cmd:?}")
+                };
+                assert_point_close(svg.from, cur, 1e-12, "arc chaining");
+                let arc = Arc::from_svg_arc(&svg).unwrap();
+                total += arc.sweep_angle;
+                for i in 0..=16 {
+                    assert_le(
+                        poly.distance_estimate(arc.eval(i as f64 / 16.0)),
+                        1e-6,
+                        "full turn on conic",
+                    );
+                }
+                cur = svg.to;
+            }
+            assert_point_close(cur, from, 0.0, "closes");
+            assert_close(total, dir * TAU, 1e-9, "total sweep");
+            // The kurbo conversion chains as well.
+            let els: Vec<PathEl> = cmds.iter().flat_map(|c| c.to_path_els(from)).collect();
+            assert!(!els.is_empty());
+        }
+    }
+
+    #[test]
+    fn parabola_gives_exact_quad() {
+        let mut worst: f64 = 0.0;
+        for (i, th) in [0.0, 0.3, 1.1, 2.0, -2.7].into_iter().enumerate() {
+            let v = Point::new(60.0 + i as f64, 30.0);
+            let k = rotated_parabola(th, v);
+            let poly = Polynomial::from(k);
+            let (s, c) = th.sin_cos();
+            // Local point (u, u²/4) → absolute.
+            let at = |u: f64| {
+                let (x, y) = (u, u * u / 4.0);
+                v + Vec2::new(c * x - s * y, s * x + c * y)
+            };
+            let (u0, u1) = (-7.0 + i as f64, 5.0);
+            let guide: Vec<Point> = (1..20)
+                .map(|j| at(u0 + (u1 - u0) * j as f64 / 20.0))
+                .collect();
+            let (cmds, err) = level_curve_path(&poly, at(u0), at(u1), &guide, 0.05).unwrap();
+            assert_eq!(err, 0.0);
+            assert!(
+                matches!(cmds.as_slice(), [PathCommand::Quad(_, p)] if *p == at(u1)),
+                "{cmds:?}"
+            );
+            for p in sample_path(at(u0), &cmds, 64) {
+                let rel =
+                    poly.eval(p).abs() / (poly.gradient(p).hypot() * (1.0 + p.to_vec2().hypot()));
+                worst = worst.max(rel);
+                assert_le(rel, 1e-9, "quad sample on parabola (relative)");
+            }
+            // Guide on another part of the parabola: rejected.
+            let far = [at(u1 + 10.0)];
+            assert!(level_curve_path(&poly, at(u0), at(u1), &far, 0.05).is_none());
+        }
+        eprintln!("parabola quads: worst relative |f|/|grad f| {worst:e}");
+    }
+
+    // ---------------------------------------------------------------- fitted curves
+
+    /// Checks a fitted path: starts at `from`, ends at `to`, samples within `tol` of the curve,
+    /// guide points near it; returns the measured max distance.
+    #[track_caller]
+    fn check_fit(
+        poly: &Polynomial,
+        from: Point,
+        to: Point,
+        guide: &[Point],
+        tol: f64,
+    ) -> (Vec<PathCommand>, f64) {
+        let (cmds, err) = level_curve_path(poly, from, to, guide, tol).expect("path");
+        assert_le(err, tol, "reported error");
+        assert!(!cmds.is_empty());
+        assert!(
+            cmds.iter().all(|c| matches!(c, PathCommand::Cubic(..))),
+            "{cmds:?}"
+        );
+        assert_point_close(cmds.last().unwrap().end(), to, 0.0, "path ends at to");
+        let samples = sample_path(from, &cmds, 64);
+        let mut measured: f64 = 0.0;
+        for &p in &samples {
+            let q = project(poly, p, 1.0).expect("sample near the curve");
+            measured = measured.max((q - p).hypot());
+        }
+        assert_le(measured, tol, "sampled distance to the true curve");
+        for g in guide {
+            let gp = project(poly, *g, 2.0).unwrap();
+            assert_le(
+                min_distance(gp, &samples),
+                tol + 0.05,
+                "guide projection near the path",
+            );
+        }
+        (cmds, measured)
+    }
+
+    #[test]
+    fn hyperbola_fit() {
+        // (x' /3)² − (y'/2)² = 1 in pixels×4, rotated by 0.6, centred at (80, 50).
+        let th: f64 = 0.6;
+        let (s, c) = th.sin_cos();
+        let centre = Point::new(80.0, 50.0);
+        let (a, b) = (12.0, 8.0);
+        let poly = Polynomial::from_local(
+            &[(2, 0), (1, 1), (0, 2)],
+            &[
+                c * c / (a * a) - s * s / (b * b),
+                2.0 * c * s * (1.0 / (a * a) + 1.0 / (b * b)),
+                s * s / (a * a) - c * c / (b * b),
+            ],
+            centre,
+            1.0,
+        )
+        .unwrap();
+        assert_eq!(poly.as_conic().unwrap().classify(), ConicKind::Hyperbola);
+        let at = |sign: f64, t: f64| {
+            let (x, y) = (sign * a * t.cosh(), b * t.sinh());
+            centre + Vec2::new(c * x - s * y, s * x + c * y)
+        };
+        let mut worst: f64 = 0.0;
+        for sign in [1.0, -1.0] {
+            let (t0, t1) = (-1.5, 2.0);
+            let guide: Vec<Point> = (1..60)
+                .map(|j| at(sign, t0 + (t1 - t0) * j as f64 / 60.0))
+                .collect();
+            let (cmds, measured) = check_fit(&poly, at(sign, t0), at(sign, t1), &guide, 0.05);
+            worst = worst.max(measured);
+            eprintln!(
+                "hyperbola branch {sign}: {} cubics, max distance {measured:e}",
+                cmds.len()
+            );
+        }
+        // Different branches.
+        assert!(level_curve_path(&poly, at(1.0, 0.0), at(-1.0, 0.0), &[], 0.05).is_none());
+        eprintln!("hyperbola fit: worst sampled distance {worst:e}");
+    }
+
+    /// 10 Y² − X³ + 300 X − 5000 = 0, i.e. y² = x³ − 3x + 5 at scale 10, around (50, 60).
+    fn cubic_curve() -> (Polynomial, impl Fn(f64) -> Point) {
+        let origin = Point::new(50.0, 60.0);
+        let poly = Polynomial::from_local(
+            &[(0, 2), (3, 0), (1, 0)],
+            &[10.0, -1.0, 300.0],
+            origin,
+            5000.0,
+        )
+        .unwrap();
+        let at =
+            move |x: f64| origin + Vec2::new(10.0 * x, 10.0 * (x * x * x - 3.0 * x + 5.0).sqrt());
+        (poly, at)
+    }
+
+    #[test]
+    fn cubic_fit() {
+        let (poly, at) = cubic_curve();
+        assert_eq!(poly.degree(), 3);
+        let (x0, x1) = (-2.0, 3.0);
+        let guide: Vec<Point> = (1..80)
+            .map(|j| at(x0 + (x1 - x0) * j as f64 / 80.0))
+            .collect();
+        let (cmds, measured) = check_fit(&poly, at(x0), at(x1), &guide, 0.05);
+        eprintln!(
+            "cubic fit: {} cubics, max distance {measured:e}",
+            cmds.len()
+        );
+        // Reverse direction.
+        let rev: Vec<Point> = guide.iter().rev().copied().collect();
+        let (_, measured) = check_fit(&poly, at(x1), at(x0), &rev, 0.05);
+        eprintln!("cubic fit reversed: max distance {measured:e}");
+        // No curve near the guide.
+        let off = [at(0.0) + Vec2::new(30.0, 0.0)];
+        assert!(level_curve_path(&poly, at(x0), at(x1), &off, 0.05).is_none());
+    }
+
+    #[test]
+    fn quartic_fit_both_ways_and_full_loop() {
+        // x⁴ + y⁴ = 20⁴ around (100, 100).
+        let origin = Point::new(100.0, 100.0);
+        let r = 20.0f64;
+        let poly =
+            Polynomial::from_local(&[(4, 0), (0, 4)], &[1.0, 1.0], origin, r.powi(4)).unwrap();
+        let at = |phi: f64| {
+            let (s, c) = phi.sin_cos();
+            let k = r / (c.powi(4) + s.powi(4)).powf(0.25);
+            origin + Vec2::new(k * c, k * s)
+        };
+        for (phi0, sweep) in [(0.0, PI / 2.0), (0.0, -1.5 * PI), (1.0, TAU), (2.0, -TAU)] {
+            let from = at(phi0);
+            let to = at(phi0 + sweep);
+            let guide: Vec<Point> = (1..100)
+                .map(|j| at(phi0 + sweep * j as f64 / 100.0))
+                .collect();
+            let (cmds, measured) = check_fit(&poly, from, to, &guide, 0.05);
+            let samples = sample_path(from, &cmds, 64);
+            // The complementary part is not covered.
+            if sweep.abs() < TAU {
+                let other = at(phi0 + sweep + sweep.signum() * (TAU - sweep.abs()) / 2.0);
+                assert!(min_distance(other, &samples) > 1.0, "wrong way round");
+            }
+            eprintln!(
+                "quartic {phi0} {sweep}: {} cubics, max distance {measured:e}",
+                cmds.len()
+            );
+        }
+    }
+
+    #[test]
+    fn line_pair_traced_through_crossing() {
+        // (x − y)(x + y) = 0 shifted to (30, 30); follow y = x through the crossing.
+        let o = Point::new(30.0, 30.0);
+        let poly = Polynomial::from_local(&[(2, 0), (0, 2)], &[1.0, -1.0], o, 0.0).unwrap();
+        assert_eq!(poly.as_conic().unwrap().classify(), ConicKind::Degenerate);
+        let from = o + Vec2::new(-5.0, -5.0);
+        let to = o + Vec2::new(5.0, 5.0);
+        let guide: Vec<Point> = (1..10)
+            .map(|i| from + Vec2::new(i as f64, i as f64))
+            .collect();
+        let (_, measured) = check_fit(&poly, from, to, &guide, 0.05);
+        assert_le(measured, 1e-6, "straight piece");
+        // Empty locus: nothing to trace.
+        let empty = Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, 1.0));
+        assert!(level_curve_path(&empty, Point::ZERO, Point::new(1.0, 0.0), &[], 0.05).is_none());
+    }
+
+    #[test]
+    fn lines_and_bad_input() {
+        let line = Polynomial::new(&[(1, 0, 1.0), (0, 1, 1.0), (0, 0, -10.0)]).unwrap();
+        let (cmds, err) = level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[],
+            0.05,
+        )
+        .unwrap();
+        assert_eq!(cmds, vec![PathCommand::Line(Point::new(10.0, 0.0))]);
+        assert_eq!(err, 0.0);
+        let nan = Point::new(f64::NAN, 0.0);
+        assert!(level_curve_path(&line, nan, Point::new(10.0, 0.0), &[], 0.05).is_none());
+        assert!(level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[nan],
+            0.05
+        )
+        .is_none());
+        assert!(level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[],
+            0.0
+        )
+        .is_none());
+        assert!(level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[],
+            f64::NAN
+        )
+        .is_none());
+        let constant = Polynomial::new(&[(0, 0, 1.0)]).unwrap();
+        assert!(level_curve_path(&constant, Point::ZERO, Point::ZERO, &[], 0.05).is_none());
+        assert!(project(&line, nan, 1.0).is_none());
+        assert!(intersect_near(&line, &line, nan, 1.0).is_none());
+        assert!(intersect_near(&line, &line, Point::ZERO, f64::INFINITY).is_none());
+    }
+
+    // ---------------------------------------------------------------- intersections
+
+    #[test]
+    fn intersections_and_projection() {
+        let diag = Polynomial::new(&[(1, 0, 1.0), (0, 1, 1.0), (0, 0, -10.0)]).unwrap();
+        let bis = Polynomial::new(&[(1, 0, 1.0), (0, 1, -1.0)]).unwrap();
+        let x = intersect_near(&diag, &bis, Point::new(4.0, 6.5), 3.0).unwrap();
+        assert_point_close(x, Point::new(5.0, 5.0), 1e-12, "line/line");
+        assert!(intersect_near(&diag, &bis, Point::new(0.0, 0.0), 3.0).is_none());
+        // Parallel lines never meet.
+        let par = Polynomial::new(&[(1, 0, 1.0), (0, 1, 1.0), (0, 0, -12.0)]).unwrap();
+        assert!(intersect_near(&diag, &par, Point::new(5.0, 5.0), 5.0).is_none());
+        // Line y = 0 and circle (x − 3)² + y² = 25: (−2, 0) and (8, 0).
+        let axis = Polynomial::new(&[(0, 1, 1.0)]).unwrap();
+        let circle = Polynomial::from(Conic::new(1.0, 0.0, 1.0, -6.0, 0.0, -16.0));
+        let x = intersect_near(&axis, &circle, Point::new(7.0, 1.0), 2.0).unwrap();
+        assert_point_close(x, Point::new(8.0, 0.0), 1e-12, "line/circle right");
+        let x = intersect_near(&circle, &axis, Point::new(-1.5, -0.5), 2.0).unwrap();
+        assert_point_close(x, Point::new(-2.0, 0.0), 1e-12, "line/circle left");
+        // Circle x² + y² = 25 and ellipse x²/18 + y²/32 = 1 meet at (±3, ±4).
+        let c5 = Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, -25.0));
+        let ell = Polynomial::from(Conic::new(16.0, 0.0, 9.0, 0.0, 0.0, -288.0));
+        for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+            let near = Point::new(sx * 3.3, sy * 3.8);
+            let x = intersect_near(&c5, &ell, near, 1.0).unwrap();
+            assert_point_close(x, Point::new(sx * 3.0, sy * 4.0), 1e-12, "circle/ellipse");
+        }
+        assert!(intersect_near(&c5, &ell, Point::new(3.3, 3.8), 0.1).is_none());
+        // Projection on a circle.
+        let p = project(&c5, Point::new(6.0, 8.0), 6.0).unwrap();
+        assert_point_close(p, Point::new(3.0, 4.0), 1e-12, "projection on circle");
+        assert!(project(&c5, Point::new(6.0, 8.0), 4.0).is_none());
+        // Projection on the cubic curve is orthogonal.
+        let (cubic, at) = cubic_curve();
+        let on = at(1.0);
+        let n = cubic.gradient(on).normalize();
+        let p = project(&cubic, on + n * 0.7, 1.0).unwrap();
+        assert_point_close(p, on, 1e-9, "projection on cubic");
+    }
 }
