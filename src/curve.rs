@@ -25,6 +25,9 @@ const N_COEFFS: usize = ((MAX_DEGREE + 1) * (MAX_DEGREE + 2) / 2) as usize;
 /// Guide points farther than this (in pixels) from the curve make [`level_curve_path`] fail.
 pub const GUIDE_MAX_DISTANCE: f64 = 2.0;
 
+/// `from` and `to` farther than this (in pixels) from the curve make [`level_curve_path`] fail.
+const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
+
 /// Largest step (in pixels) of the numerical tracer used by [`level_curve_path`].
 const TRACE_STEP: f64 = 0.25;
 
@@ -51,10 +54,19 @@ fn binomial(n: u32, k: u32) -> f64 {
 /// with `f64` coefficients in absolute (SVG) coordinates.
 ///
 /// The curve described is the zero set `f = 0`.
+///
+/// Besides the absolute coefficients, a polynomial built by [`Polynomial::from_local`] keeps
+/// its local coefficients and origin, and [`Polynomial::eval`] and [`Polynomial::gradient`]
+/// work in that local frame: a sextic around `(800, 600)` has absolute coefficients up to
+/// ~1e18, whose rounding alone would move the curve by ~1e-4 px.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Polynomial {
-    /// Dense triangular storage, see [`index`].
+    /// Absolute coefficients, dense triangular storage, see [`index`].
     coeffs: [f64; N_COEFFS],
+    /// Origin of the evaluation frame.
+    origin: Point,
+    /// Coefficients in the evaluation frame: `f = Σ local_ab (x − ox)^a (y − oy)^b`.
+    local: [f64; N_COEFFS],
 }
 
 impl Polynomial {
@@ -69,7 +81,7 @@ impl Polynomial {
             }
             coeffs[index(a, b)] += c;
         }
-        Some(Polynomial { coeffs }).filter(Polynomial::is_finite)
+        Some(Polynomial::absolute(coeffs)).filter(Polynomial::is_finite)
     }
 
     /// The polynomial `g(x, y) = Σ c_i (x − x0)^a_i (y − y0)^b_i − level`, expanded into
@@ -95,6 +107,7 @@ impl Polynomial {
             return None;
         }
         let mut coeffs = [0.0; N_COEFFS];
+        let mut local = [0.0; N_COEFFS];
         let mut xp = [1.0; MAX_DEGREE as usize + 1];
         let mut yp = [1.0; MAX_DEGREE as usize + 1];
         for k in 1..xp.len() {
@@ -105,6 +118,7 @@ impl Polynomial {
             if a.checked_add(b)? > MAX_DEGREE {
                 return None;
             }
+            local[index(a, b)] += c;
             // (x − x0)^a = Σ_i C(a, i) x^i (−x0)^(a−i), likewise for y.
             for i in 0..=a {
                 let cx = c * binomial(a, i) * xp[(a - i) as usize];
@@ -114,11 +128,26 @@ impl Polynomial {
             }
         }
         coeffs[0] -= level;
-        Some(Polynomial { coeffs }).filter(Polynomial::is_finite)
+        local[0] -= level;
+        Some(Polynomial {
+            coeffs,
+            origin,
+            local,
+        })
+        .filter(Polynomial::is_finite)
+    }
+
+    /// The polynomial with these absolute coefficients, evaluated in absolute coordinates.
+    fn absolute(coeffs: [f64; N_COEFFS]) -> Polynomial {
+        Polynomial {
+            coeffs,
+            origin: Point::ZERO,
+            local: coeffs,
+        }
     }
 
     fn is_finite(&self) -> bool {
-        self.coeffs.iter().all(|c| c.is_finite())
+        self.coeffs.iter().chain(&self.local).all(|c| c.is_finite())
     }
 
     /// The coefficient of `x^a y^b` (0 when `a + b > MAX_DEGREE`).
@@ -147,7 +176,7 @@ impl Polynomial {
     pub fn degree(&self) -> u32 {
         (0..=MAX_DEGREE)
             .rev()
-            .find(|&k| (0..=k).any(|b| self.coeffs[index(k - b, b)] != 0.0))
+            .find(|&k| (0..=k).any(|b| self.local[index(k - b, b)] != 0.0))
             .unwrap_or(0)
     }
 
@@ -163,11 +192,11 @@ impl Polynomial {
 
     /// The value `f(p)`.
     pub fn eval(&self, p: Point) -> f64 {
-        let (xp, yp) = Self::powers(p);
+        let (xp, yp) = Self::powers((p - self.origin).to_point());
         let mut s = 0.0;
         for k in 0..=MAX_DEGREE as usize {
             for b in 0..=k {
-                s += self.coeffs[k * (k + 1) / 2 + b] * xp[k - b] * yp[b];
+                s += self.local[k * (k + 1) / 2 + b] * xp[k - b] * yp[b];
             }
         }
         s
@@ -175,12 +204,12 @@ impl Polynomial {
 
     /// The gradient `∇f(p) = (∂f/∂x, ∂f/∂y)`.
     pub fn gradient(&self, p: Point) -> Vec2 {
-        let (xp, yp) = Self::powers(p);
+        let (xp, yp) = Self::powers((p - self.origin).to_point());
         let (mut gx, mut gy) = (0.0, 0.0);
         for k in 1..=MAX_DEGREE as usize {
             for b in 0..=k {
                 let a = k - b;
-                let c = self.coeffs[k * (k + 1) / 2 + b];
+                let c = self.local[k * (k + 1) / 2 + b];
                 if a > 0 {
                     gx += c * a as f64 * xp[a - 1] * yp[b];
                 }
@@ -230,7 +259,7 @@ impl From<Conic> for Polynomial {
         coeffs[index(1, 0)] = k.d;
         coeffs[index(0, 1)] = k.e;
         coeffs[index(0, 0)] = k.f;
-        Polynomial { coeffs }
+        Polynomial::absolute(coeffs)
     }
 }
 
@@ -740,7 +769,10 @@ pub fn level_curve_path(
     {
         return None;
     }
-    if poly.degree() == 0 {
+    if poly.degree() == 0
+        || poly.distance_estimate(from) > ENDPOINT_MAX_DISTANCE
+        || poly.distance_estimate(to) > ENDPOINT_MAX_DISTANCE
+    {
         return None;
     }
     if let Some(conic) = poly.as_conic() {
@@ -919,8 +951,8 @@ fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
 
 /// Marches along the curve from `from` to `to`, passing the projections of the guide points.
 fn trace_curve(poly: &Polynomial, from: Point, to: Point, guide: &[Point]) -> Option<Trace> {
-    let start = project(poly, from, 0.01)?;
-    let end = project(poly, to, 0.01)?;
+    let start = project(poly, from, ENDPOINT_MAX_DISTANCE)?;
+    let end = project(poly, to, ENDPOINT_MAX_DISTANCE)?;
     let targets: Vec<Point> = guide
         .iter()
         .map(|&g| project(poly, g, GUIDE_MAX_DISTANCE))
@@ -1197,6 +1229,7 @@ mod tests {
     fn from_local_agrees_with_direct_evaluation() {
         let mut rng = Rng(0x1234_5678_9abc_def1);
         let mut worst: f64 = 0.0;
+        let mut worst_abs: f64 = 0.0;
         for _ in 0..200 {
             let n = 1 + (rng.next() * 8.0) as usize;
             let monomials: Vec<(u32, u32)> = (0..n)
@@ -1227,11 +1260,19 @@ mod tests {
                         * (p.y.abs() + origin.y).powi(b as i32);
                 }
                 let got = poly.eval(p);
+                // The absolute expansion, evaluated term by term in absolute coordinates.
+                let absolute: f64 = poly
+                    .terms()
+                    .iter()
+                    .map(|&(a, b, c)| c * p.x.powi(a as i32) * p.y.powi(b as i32))
+                    .sum();
+                worst_abs = worst_abs.max((absolute - direct).abs() / scale);
+                assert_close(absolute, direct, 1e-13 * scale, "absolute expansion");
                 worst = worst.max((got - direct).abs() / scale);
                 assert_close(got, direct, 1e-13 * scale, "from_local eval");
             }
         }
-        eprintln!("from_local: worst error relative to term scale {worst:e}");
+        eprintln!("from_local: worst error relative to term scale {worst:e} (local frame), {worst_abs:e} (absolute expansion)");
     }
 
     #[test]
@@ -1618,11 +1659,11 @@ mod tests {
         assert_le(measured, tol, "sampled distance to the true curve");
         for g in guide {
             let gp = project(poly, *g, 2.0).unwrap();
-            assert_le(
-                min_distance(gp, &samples),
-                tol + 0.05,
-                "guide projection near the path",
-            );
+            // Guide points near the ends may project just outside the piece.
+            if (gp - from).hypot() > 1.0 && (gp - to).hypot() > 1.0 {
+                let d = min_distance(gp, &samples);
+                assert_le(d, tol + 0.05, "guide projection near the path");
+            }
         }
         (cmds, measured)
     }
@@ -1737,6 +1778,90 @@ mod tests {
         }
     }
 
+    /// Pixel-like guide: points of the curve pushed up to `noise` along the normal, plus
+    /// points overshooting both ends by half a pixel.
+    fn noisy_guide(poly: &Polynomial, pts: &[Point], noise: f64, rng: &mut Rng) -> Vec<Point> {
+        let mut out = Vec::new();
+        let first = pts[0];
+        let last = pts[pts.len() - 1];
+        let t0 = unit_tangent(poly, first).unwrap();
+        let t0 = if t0.dot(pts[1] - first) > 0.0 {
+            t0
+        } else {
+            -t0
+        };
+        out.push(first - t0 * 0.5);
+        for &p in &pts[1..pts.len() - 1] {
+            let n = poly.gradient(p).normalize();
+            out.push(p + n * rng.range(-noise, noise));
+        }
+        let t1 = unit_tangent(poly, last).unwrap();
+        let t1 = if t1.dot(last - pts[pts.len() - 2]) > 0.0 {
+            t1
+        } else {
+            -t1
+        };
+        out.push(last + t1 * 0.5);
+        out
+    }
+
+    #[test]
+    fn sextic_far_from_origin_with_noisy_guides() {
+        // x⁶ + y⁶ = 10⁶ around (800.5, 600.5): absolute coefficients up to ~1e18.
+        let origin = Point::new(800.5, 600.5);
+        let r = 10.0f64;
+        let poly =
+            Polynomial::from_local(&[(6, 0), (0, 6)], &[1.0, 1.0], origin, r.powi(6)).unwrap();
+        assert_eq!(poly.degree(), 6);
+        let at = |phi: f64| {
+            let (s, c) = phi.sin_cos();
+            let k = r / (c.powi(6) + s.powi(6)).powf(1.0 / 6.0);
+            origin + Vec2::new(k * c, k * s)
+        };
+        let mut rng = Rng(0x5eed_5eed_5eed_5eed);
+        for (phi0, sweep) in [(0.2, 2.0), (0.2, -3.0), (-1.0, TAU)] {
+            let exact: Vec<Point> = (0..=60)
+                .map(|j| at(phi0 + sweep * j as f64 / 60.0))
+                .collect();
+            let guide = noisy_guide(&poly, &exact, 0.45, &mut rng);
+            let (cmds, measured) = check_fit(&poly, exact[0], exact[60], &guide, 0.05);
+            let samples = sample_path(exact[0], &cmds, 64);
+            for p in &exact {
+                assert_le(min_distance(*p, &samples), 0.05, "intended part covered");
+            }
+            eprintln!(
+                "sextic {phi0} {sweep}: {} cubics, max distance {measured:e}",
+                cmds.len()
+            );
+        }
+    }
+
+    #[test]
+    fn noisy_guides_on_cubic_and_ellipse() {
+        let mut rng = Rng(0x1111_2222_3333_4444);
+        let (poly, at) = cubic_curve();
+        let exact: Vec<Point> = (0..=50).map(|j| at(-2.0 + 5.0 * j as f64 / 50.0)).collect();
+        let guide = noisy_guide(&poly, &exact, 0.45, &mut rng);
+        let (_, measured) = check_fit(&poly, exact[0], exact[50], &guide, 0.05);
+        eprintln!("cubic, noisy guide: max distance {measured:e}");
+        // Ellipse, small and large arcs, guide overshooting both ends.
+        let centre = Point::new(30.0, 20.0);
+        let k = ellipse_conic(centre, 12.0, 5.0, 0.3, 60.0);
+        let epoly = Polynomial::from(k);
+        for sweep in [0.4, -0.4, 4.0, -4.0] {
+            let exact: Vec<Point> = (0..=30)
+                .map(|j| ellipse_point(centre, 12.0, 5.0, 0.3, 1.0 + sweep * j as f64 / 30.0))
+                .collect();
+            let guide = noisy_guide(&epoly, &exact, 0.45, &mut rng);
+            let (cmds, _) = level_curve_path(&epoly, exact[0], exact[30], &guide, 0.05).unwrap();
+            let PathCommand::Arc(svg) = cmds[0] else {
+                panic!("{cmds:?}")
+            };
+            let arc = Arc::from_svg_arc(&svg).unwrap();
+            assert_close(arc.sweep_angle, sweep, 1e-6, "noisy guide sweep");
+        }
+    }
+
     #[test]
     fn line_pair_traced_through_crossing() {
         // (x − y)(x + y) = 0 shifted to (30, 30); follow y = x through the crossing.
@@ -1792,6 +1917,18 @@ mod tests {
             Point::new(10.0, 0.0),
             &[],
             f64::NAN
+        )
+        .is_none());
+        // Endpoints off the curve.
+        let off = Point::new(0.0, 10.5);
+        assert!(level_curve_path(&line, off, Point::new(10.0, 0.0), &[], 0.05).is_none());
+        let circle = Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, -25.0));
+        assert!(level_curve_path(
+            &circle,
+            Point::new(3.0, 4.1),
+            Point::new(5.0, 0.0),
+            &[],
+            0.05
         )
         .is_none());
         let constant = Polynomial::new(&[(0, 0, 1.0)]).unwrap();
