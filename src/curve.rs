@@ -745,9 +745,10 @@ fn newton_system(
 ///   tangents at `from` and `to`;
 /// * hyperbola (same branch), degenerate conics and degree > 2: the curve is traced from
 ///   `from` to `to` through the guide points' projections (predictor along the tangent,
-///   Newton corrector, step ≤ 0.25 px), then fitted by cubic Béziers (Hermite with tangent
-///   lengths of a third of the arc length, subdivided until the distance to the true curve,
-///   measured both ways at samples with Newton projections, is at most `tolerance`).
+///   Newton corrector, step ≤ 0.25 px), then fitted by cubic Béziers tangent to the curve at
+///   their ends (tangent lengths by least squares, or a third of the arc length, whichever is
+///   closer), subdivided until the distance to the true curve, measured both ways at samples
+///   with Newton projections, is at most `tolerance`.
 ///
 /// Returns `None` for non-finite input, a non-positive `tolerance`, a constant polynomial,
 /// `from`/`to` not on the curve (within 0.01), a guide point whose projection fails or (for
@@ -1054,19 +1055,52 @@ fn trace_curve(poly: &Polynomial, from: Point, to: Point, guide: &[Point]) -> Op
     }
 }
 
-/// Hermite cubic over the trace points `i..=j`, tangent lengths a third of the arc length.
-fn hermite(trace: &Trace, i: usize, j: usize) -> CubicBez {
-    let len: f64 = trace.pts[i..=j]
-        .windows(2)
-        .map(|w| (w[1] - w[0]).hypot())
-        .sum();
-    let (p0, p3) = (trace.pts[i], trace.pts[j]);
-    CubicBez::new(
+/// Cubic candidates over the trace points `i..=j`, both with the end tangents of the trace:
+/// the Hermite cubic with tangent lengths a third of the arc length, and (when it is well
+/// posed) the least-squares one whose two tangent lengths minimise the squared distances to
+/// the trace points at their chord-length parameters (Schneider's method).
+fn candidates(trace: &Trace, i: usize, j: usize) -> Vec<CubicBez> {
+    let pts = &trace.pts[i..=j];
+    let mut cum = Vec::with_capacity(pts.len());
+    let mut len = 0.0;
+    cum.push(0.0);
+    for w in pts.windows(2) {
+        len += (w[1] - w[0]).hypot();
+        cum.push(len);
+    }
+    let (p0, p3) = (pts[0], pts[pts.len() - 1]);
+    let (t0, t1) = (trace.tans[i], -trace.tans[j]);
+    let mut out = vec![CubicBez::new(
         p0,
-        p0 + trace.tans[i] * (len / 3.0),
-        p3 - trace.tans[j] * (len / 3.0),
+        p0 + t0 * (len / 3.0),
+        p3 + t1 * (len / 3.0),
         p3,
-    )
+    )];
+    if pts.len() < 4 || len <= 0.0 {
+        return out;
+    }
+    let (mut c00, mut c01, mut c11, mut x0, mut x1) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (p, &l) in pts.iter().zip(&cum) {
+        let t = l / len;
+        let mt = 1.0 - t;
+        let (b0, b1, b2, b3) = (mt * mt * mt, 3.0 * t * mt * mt, 3.0 * t * t * mt, t * t * t);
+        let (a1, a2) = (t0 * b1, t1 * b2);
+        c00 += a1.dot(a1);
+        c01 += a1.dot(a2);
+        c11 += a2.dot(a2);
+        let r = *p - (p0.to_vec2() * (b0 + b1) + p3.to_vec2() * (b2 + b3)).to_point();
+        x0 += r.dot(a1);
+        x1 += r.dot(a2);
+    }
+    let det = c00 * c11 - c01 * c01;
+    if det.abs() > 1e-12 * c00 * c11 {
+        let alpha = (x0 * c11 - x1 * c01) / det;
+        let beta = (c00 * x1 - c01 * x0) / det;
+        if alpha > 1e-3 * len && beta > 1e-3 * len && alpha < len && beta < len {
+            out.push(CubicBez::new(p0, p0 + t0 * alpha, p3 + t1 * beta, p3));
+        }
+    }
+    out
 }
 
 /// Distance between a cubic and the curve: cubic samples projected onto the curve, and trace
@@ -1094,27 +1128,54 @@ fn cubic_error(
     err
 }
 
+/// The better of the [`candidates`] over the trace points `i..=j`, with its error.
+fn best_fit(poly: &Polynomial, trace: &Trace, i: usize, j: usize, tol: f64) -> (CubicBez, f64) {
+    let mut cands = candidates(trace, i, j).into_iter();
+    let first = cands
+        .next()
+        .unwrap_or_else(|| CubicBez::new(trace.pts[i], trace.pts[i], trace.pts[j], trace.pts[j]));
+    let first_err = cubic_error(poly, &first, trace, i, j, tol);
+    cands.fold((first, first_err), |best, c| {
+        let err = cubic_error(poly, &c, trace, i, j, tol);
+        if err < best.1 {
+            (c, err)
+        } else {
+            best
+        }
+    })
+}
+
 /// Piecewise cubic fit of a trace within `tol`; returns the commands and the maximal error.
+///
+/// Greedy: from each start, the farthest trace point reachable by one cubic within `tol` is
+/// found by bisection (a single trace step is always accepted, with its measured error).
 fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, f64) {
     let n = trace.pts.len();
-    if n < 2 {
-        return (Vec::new(), 0.0);
-    }
     let mut out = Vec::new();
     let mut max_err: f64 = 0.0;
-    // Ranges to fit, processed front to back.
-    let mut stack = vec![(0, n - 1)];
-    while let Some((i, j)) = stack.pop() {
-        let c = hermite(trace, i, j);
-        let err = cubic_error(poly, &c, trace, i, j, tol);
-        if err <= tol || j - i < 2 {
-            max_err = max_err.max(err);
-            out.push(PathCommand::Cubic(c.p1, c.p2, c.p3));
-        } else {
-            let m = (i + j) / 2;
-            stack.push((m, j));
-            stack.push((i, m));
+    let mut i = 0;
+    while i + 1 < n {
+        let mut best = best_fit(poly, trace, i, n - 1, tol);
+        let mut end = n - 1;
+        if best.1 > tol {
+            // Invariant: a fit to `lo` is acceptable (or lo = i + 1), a fit to `hi` is not.
+            let (mut lo, mut hi) = (i + 1, n - 1);
+            best = best_fit(poly, trace, i, lo, tol);
+            while hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                let fit = best_fit(poly, trace, i, mid, tol);
+                if fit.1 <= tol {
+                    lo = mid;
+                    best = fit;
+                } else {
+                    hi = mid;
+                }
+            }
+            end = lo;
         }
+        max_err = max_err.max(best.1);
+        out.push(PathCommand::Cubic(best.0.p1, best.0.p2, best.0.p3));
+        i = end;
     }
     (out, max_err)
 }
