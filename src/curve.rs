@@ -1122,7 +1122,9 @@ fn cubic_error(
             None => return f64::INFINITY,
         }
     }
-    for &p in &trace.pts[i + 1..j] {
+    // Trace points, at most about 64 of them, evenly spread.
+    let stride = ((j - i) / 64).max(1);
+    for &p in trace.pts[i + 1..j].iter().step_by(stride) {
         err = err.max(c.nearest(p, 1e-9).distance_sq.sqrt());
     }
     err
@@ -1148,19 +1150,33 @@ fn best_fit(poly: &Polynomial, trace: &Trace, i: usize, j: usize, tol: f64) -> (
 /// Piecewise cubic fit of a trace within `tol`; returns the commands and the maximal error.
 ///
 /// Greedy: from each start, the farthest trace point reachable by one cubic within `tol` is
-/// found by bisection (a single trace step is always accepted, with its measured error).
+/// found by galloping then bisection (a single trace step is always accepted, with its
+/// measured error).
 fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, f64) {
     let n = trace.pts.len();
     let mut out = Vec::new();
     let mut max_err: f64 = 0.0;
     let mut i = 0;
     while i + 1 < n {
-        let mut best = best_fit(poly, trace, i, n - 1, tol);
-        let mut end = n - 1;
-        if best.1 > tol {
-            // Invariant: a fit to `lo` is acceptable (or lo = i + 1), a fit to `hi` is not.
-            let (mut lo, mut hi) = (i + 1, n - 1);
-            best = best_fit(poly, trace, i, lo, tol);
+        // Gallop: double the reach while one cubic fits, then bisect.
+        // Invariant: the fit to `lo` is acceptable (or lo = i + 1), the fit to `hi` is not.
+        let mut lo = i + 1;
+        let mut best = best_fit(poly, trace, i, lo, tol);
+        let mut hi = None;
+        let mut step = 8;
+        while lo < n - 1 {
+            let j = (i + step).min(n - 1);
+            let fit = best_fit(poly, trace, i, j, tol);
+            if fit.1 <= tol {
+                lo = j;
+                best = fit;
+                step *= 2;
+            } else {
+                hi = Some(j);
+                break;
+            }
+        }
+        if let Some(mut hi) = hi {
             while hi - lo > 1 {
                 let mid = (lo + hi) / 2;
                 let fit = best_fit(poly, trace, i, mid, tol);
@@ -1171,8 +1187,8 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
                     hi = mid;
                 }
             }
-            end = lo;
         }
+        let end = lo;
         max_err = max_err.max(best.1);
         out.push(PathCommand::Cubic(best.0.p1, best.0.p2, best.0.p3));
         i = end;
@@ -1939,6 +1955,127 @@ mod tests {
         // Empty locus: nothing to trace.
         let empty = Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, 1.0));
         assert!(level_curve_path(&empty, Point::ZERO, Point::new(1.0, 0.0), &[], 0.05).is_none());
+    }
+
+    #[test]
+    fn double_line_and_two_ovals() {
+        // (x − y)² = 0: the gradient vanishes on the curve itself.
+        let o = Point::new(12.5, 7.5);
+        let double =
+            Polynomial::from_local(&[(2, 0), (1, 1), (0, 2)], &[1.0, -2.0, 1.0], o, 0.0).unwrap();
+        let from = o + Vec2::new(-4.0, -4.0);
+        let to = o + Vec2::new(4.0, 4.0);
+        let guide: Vec<Point> = (1..8)
+            .map(|i| from + Vec2::new(i as f64 + 0.3, i as f64))
+            .collect();
+        let (cmds, err) = level_curve_path(&double, from, to, &guide, 0.05).unwrap();
+        assert_le(err, 0.05, "double line error");
+        assert_point_close(cmds.last().unwrap().end(), to, 0.0, "double line end");
+        for p in sample_path(from, &cmds, 32) {
+            assert_le(segment_distance(p, from, to), 1e-6, "double line straight");
+        }
+        // Two circles of radius 2 as one quartic: (x² + y² − 4)((x − 10)² + y² − 4).
+        let c1 = Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, -4.0));
+        let mut terms = Vec::new();
+        // (x² + y² − 4)(x² + y² − 20x + 96), expanded.
+        let p1 = [(2, 0, 1.0), (0, 2, 1.0), (0, 0, -4.0)];
+        let p2 = [(2, 0, 1.0), (0, 2, 1.0), (1, 0, -20.0), (0, 0, 96.0)];
+        for &(a1, b1, k1) in &p1 {
+            for &(a2, b2, k2) in &p2 {
+                terms.push((a1 + a2, b1 + b2, k1 * k2));
+            }
+        }
+        let ovals = Polynomial::new(&terms).unwrap();
+        let circle_at = |cx: f64, phi: f64| Point::new(cx + 2.0 * phi.cos(), 2.0 * phi.sin());
+        for phi in [0.0, 1.0, 2.5] {
+            assert_le(
+                ovals.distance_estimate(circle_at(0.0, phi)),
+                1e-12,
+                "first oval",
+            );
+            assert_le(
+                ovals.distance_estimate(circle_at(10.0, phi)),
+                1e-12,
+                "second oval",
+            );
+            assert_le(c1.distance_estimate(circle_at(0.0, phi)), 1e-12, "circle");
+        }
+        let (from, to) = (circle_at(0.0, 0.0), circle_at(0.0, 2.0));
+        let own: Vec<Point> = (1..10).map(|i| circle_at(0.0, 0.2 * i as f64)).collect();
+        check_fit(&ovals, from, to, &own, 0.05);
+        let other: Vec<Point> = (1..10).map(|i| circle_at(10.0, 0.2 * i as f64)).collect();
+        assert!(level_curve_path(&ovals, from, to, &other, 0.05).is_none());
+    }
+
+    #[test]
+    fn long_sextic_loop_is_fast_enough() {
+        // x⁶ + y⁶ = 200⁶ around (400.5, 300.5): a closed curve ~1500 px long.
+        let origin = Point::new(400.5, 300.5);
+        let r = 200.0f64;
+        let poly =
+            Polynomial::from_local(&[(6, 0), (0, 6)], &[1.0, 1.0], origin, r.powi(6)).unwrap();
+        let at = |phi: f64| {
+            let (s, c) = phi.sin_cos();
+            origin + Vec2::new(c, s) * (r / (c.powi(6) + s.powi(6)).powf(1.0 / 6.0))
+        };
+        let guide: Vec<Point> = (1..1200)
+            .map(|j| at(0.3 + TAU * j as f64 / 1200.0))
+            .collect();
+        let start = std::time::Instant::now();
+        let (cmds, measured) = check_fit(&poly, at(0.3), at(0.3), &guide, 0.05);
+        let elapsed = start.elapsed();
+        eprintln!(
+            "long sextic loop: {} cubics, max distance {measured:e}, {elapsed:?} (with checks)",
+            cmds.len()
+        );
+        assert!(elapsed.as_secs_f64() < 20.0, "too slow: {elapsed:?}");
+    }
+
+    #[test]
+    fn path_els_follow_the_commands() {
+        let k = ellipse_conic(Point::new(40.0, 30.0), 15.0, 6.0, 0.8, 90.0);
+        let poly = Polynomial::from(k);
+        let (c, r, a) = k.ellipse_params().unwrap();
+        let from = ellipse_point(c, r.x, r.y, a, 0.5);
+        let to = ellipse_point(c, r.x, r.y, a, 4.0);
+        let guide: Vec<Point> = (1..20)
+            .map(|i| ellipse_point(c, r.x, r.y, a, 0.5 + 3.5 * i as f64 / 20.0))
+            .collect();
+        let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+        let mut path = kurbo::BezPath::new();
+        path.move_to(from);
+        let mut cur = from;
+        for cmd in &cmds {
+            path.extend(cmd.to_path_els(cur));
+            cur = cmd.end();
+        }
+        let segs: Vec<kurbo::PathSeg> = path.segments().collect();
+        assert!(!segs.is_empty());
+        assert_point_close(segs.last().unwrap().end(), to, 1e-9, "kurbo path end");
+        for seg in &segs {
+            for i in 0..=8 {
+                let d = poly.distance_estimate(seg.eval(i as f64 / 8.0));
+                assert_le(
+                    d,
+                    2.0 * ARC_FLATTEN_TOLERANCE,
+                    "flattened arc near the ellipse",
+                );
+            }
+        }
+        // Lines, quads and cubics map one to one.
+        let p = Point::new(1.0, 2.0);
+        assert_eq!(
+            PathCommand::Line(p).to_path_els(Point::ZERO),
+            vec![PathEl::LineTo(p)]
+        );
+        assert_eq!(
+            PathCommand::Quad(p, p).to_path_els(Point::ZERO),
+            vec![PathEl::QuadTo(p, p)]
+        );
+        assert_eq!(
+            PathCommand::Cubic(p, p, p).to_path_els(Point::ZERO),
+            vec![PathEl::CurveTo(p, p, p)]
+        );
     }
 
     #[test]
