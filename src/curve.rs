@@ -754,6 +754,7 @@ fn newton_system(
 /// `from`/`to` not on the curve (within 0.01), a guide point whose projection fails or (for
 /// parabolas) lies farther than [`GUIDE_MAX_DISTANCE`] from the arc, points on different
 /// hyperbola branches, or a trace that does not reach `to`.
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(d <= max)` also rejects NaN distances.
 pub fn level_curve_path(
     poly: &Polynomial,
     from: Point,
@@ -771,8 +772,8 @@ pub fn level_curve_path(
         return None;
     }
     if poly.degree() == 0
-        || poly.distance_estimate(from) > ENDPOINT_MAX_DISTANCE
-        || poly.distance_estimate(to) > ENDPOINT_MAX_DISTANCE
+        || !(poly.distance_estimate(from) <= ENDPOINT_MAX_DISTANCE)
+        || !(poly.distance_estimate(to) <= ENDPOINT_MAX_DISTANCE)
     {
         return None;
     }
@@ -2076,6 +2077,65 @@ mod tests {
             PathCommand::Cubic(p, p, p).to_path_els(Point::ZERO),
             vec![PathEl::CurveTo(p, p, p)]
         );
+    }
+
+    #[test]
+    fn random_inputs_do_not_panic() {
+        let mut rng = Rng(0xdead_beef_0bad_f00d);
+        let start = std::time::Instant::now();
+        let mut found = 0;
+        for case in 0..300 {
+            let n = 1 + (rng.next() * 10.0) as usize;
+            let monomials: Vec<(u32, u32)> = (0..n)
+                .map(|_| {
+                    let k = (rng.next() * 7.0) as u32;
+                    let b = (rng.next() * (k + 1) as f64) as u32;
+                    (k - b, b)
+                })
+                .collect();
+            let coefficients: Vec<f64> = (0..n).map(|_| rng.range(-10.0, 10.0).round()).collect();
+            let origin = Point::new(
+                rng.range(0.0, 50.0).floor() + 0.5,
+                rng.range(0.0, 50.0).floor() + 0.5,
+            );
+            let poly =
+                Polynomial::from_local(&monomials, &coefficients, origin, rng.range(-5.0, 5.0))
+                    .unwrap();
+            let q = Polynomial::from_local(
+                &[(1, 0), (0, 1)],
+                &[rng.range(-1.0, 1.0), 1.0],
+                origin,
+                0.0,
+            )
+            .unwrap();
+            let near = origin + Vec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+            let _ = intersect_near(&poly, &q, near, 2.0);
+            let (Some(from), Some(to)) = (
+                project(&poly, near, 3.0),
+                project(
+                    &poly,
+                    near + Vec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)),
+                    3.0,
+                ),
+            ) else {
+                continue;
+            };
+            let guide: Vec<Point> = (1..5).map(|i| from.lerp(to, i as f64 / 5.0)).collect();
+            let guide = if case % 2 == 0 { guide } else { Vec::new() };
+            if let Some((cmds, err)) = level_curve_path(&poly, from, to, &guide, 0.05) {
+                found += 1;
+                assert!(err.is_finite(), "{err}");
+                if let Some(last) = cmds.last() {
+                    assert_point_close(last.end(), to, 0.0, "random path end");
+                }
+            }
+        }
+        let huge = Point::new(1e300, -1e300);
+        let line = Polynomial::new(&[(1, 0, 1.0), (0, 0, -1.0)]).unwrap();
+        assert!(level_curve_path(&line, huge, huge, &[], 0.05).is_none());
+        let _ = project(&line, huge, 1.0);
+        let _ = intersect_near(&line, &line, huge, 1.0);
+        eprintln!("random inputs: {found} paths found, {:?}", start.elapsed());
     }
 
     #[test]
