@@ -58,7 +58,8 @@ fn binomial(n: u32, k: u32) -> f64 {
 /// Besides the absolute coefficients, a polynomial built by [`Polynomial::from_local`] keeps
 /// its local coefficients and origin, and [`Polynomial::eval`] and [`Polynomial::gradient`]
 /// work in that local frame: a sextic around `(800, 600)` has absolute coefficients up to
-/// ~1e18, whose rounding alone would move the curve by ~1e-4 px.
+/// ~1e18, whose rounding alone would move the curve by ~1e-4 px. Equality (`==`) compares
+/// this stored representation, frame included.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Polynomial {
     /// Absolute coefficients, dense triangular storage, see [`index`].
@@ -1631,6 +1632,43 @@ mod tests {
             }
         }
         eprintln!("ellipse arcs: worst |f|/|grad f| of arc samples {worst:e}");
+    }
+
+    #[test]
+    fn integer_local_ellipse_far_from_origin() {
+        // As the exporter builds it: integer coefficients on a local basis centred at a pixel,
+        // 9 (x − x0)² − 4 (x − x0)(y − y0) + 6 (y − y0)² + 3 (x − x0) − 2 (y − y0) = 400.
+        let origin = Point::new(913.5, 707.5);
+        let poly = Polynomial::from_local(
+            &[(2, 0), (1, 1), (0, 2), (1, 0), (0, 1)],
+            &[9.0, -4.0, 6.0, 3.0, -2.0],
+            origin,
+            400.0,
+        )
+        .unwrap();
+        let k = poly.as_conic().unwrap();
+        assert_eq!(k.classify(), ConicKind::Ellipse);
+        let (c, r, a) = k.ellipse_params().unwrap();
+        for sweep in [1.0, -2.5, 5.0] {
+            let from = project(&poly, ellipse_point(c, r.x, r.y, a, 0.3), 1e-3).unwrap();
+            let to = project(&poly, ellipse_point(c, r.x, r.y, a, 0.3 + sweep), 1e-3).unwrap();
+            let guide: Vec<Point> = (1..20)
+                .map(|i| ellipse_point(c, r.x, r.y, a, 0.3 + sweep * i as f64 / 20.0))
+                .collect();
+            let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+            let PathCommand::Arc(svg) = cmds[0] else {
+                panic!("{cmds:?}")
+            };
+            let arc = Arc::from_svg_arc(&svg).unwrap();
+            assert_close(arc.sweep_angle, sweep, 1e-6, "far ellipse sweep");
+            for i in 0..=32 {
+                assert_le(
+                    poly.distance_estimate(arc.eval(i as f64 / 32.0)),
+                    1e-6,
+                    "far ellipse arc on curve",
+                );
+            }
+        }
     }
 
     #[test]
