@@ -3,11 +3,16 @@
 //! Implements *Digital Level Layers for Digital Curve Decomposition and Vectorization*
 //! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014).
 
+mod curve;
 mod error;
 mod model;
 mod pixel;
 mod recognize;
 
+pub use curve::{
+    intersect_near, level_curve_path, project, Conic, ConicKind, PathCommand, Polynomial,
+    ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
+};
 pub use error::Error;
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use pixel::Pixel;
