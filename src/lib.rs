@@ -3,15 +3,21 @@
 //! Implements *Digital Level Layers for Digital Curve Decomposition and Vectorization*
 //! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014).
 
+mod contour;
 mod curve;
+mod decompose;
 mod error;
 mod model;
 mod pixel;
 mod recognize;
 
+pub use contour::{Contour, Convention};
 pub use curve::{
     intersect_near, level_curve_path, project, Conic, ConicKind, PathCommand, Polynomial,
     ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
+};
+pub use decompose::{
+    decompose, decompose_points, neighbour_sides, piece_outliers, Decomposition, OutlierRule, Piece,
 };
 pub use error::Error;
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};

@@ -93,6 +93,7 @@ pub(crate) fn round_to_certificate(
     y: &[f64],
     margin: f64,
     max_abs: &[i64],
+    tight: &[Vec<i64>],
 ) -> Option<(Vec<i64>, Extremes)> {
     let ymax = y.iter().fold(0.0f64, |m, v| m.max(f64::abs(*v)));
     if ymax.is_nan() || ymax <= 0.0 || !ymax.is_finite() || margin.is_nan() || margin <= 0.0 {
@@ -110,8 +111,12 @@ pub(crate) fn round_to_certificate(
         if a.iter().all(|&v| v == 0) || last.as_ref() == Some(&a) {
             continue;
         }
-        if let Some(e) = verify_certificate(sets, &a) {
-            return Some(reduce_by_gcd(a, e));
+        // Cheap filter first: the tightest points of D (the simplex) must be positive.
+        let plausible = tight.iter().all(|d| dot_i128(&a, d).is_some_and(|v| v > 0));
+        if plausible {
+            if let Some(e) = verify_certificate(sets, &a) {
+                return Some(reduce_by_gcd(a, e));
+            }
         }
         last = Some(a);
     }
@@ -137,11 +142,62 @@ pub(crate) fn reduce_by_gcd(a: Vec<i64>, e: Extremes) -> (Vec<i64>, Extremes) {
     )
 }
 
+/// The barycentric coordinates of the origin with respect to `points`, when the points are
+/// affinely independent, the origin lies in their affine hull and every coordinate is
+/// non-negative: `λ ≥ 0`, `Σλ = 1`, `Σ λ_i p_i = 0`, exactly.
+///
+/// One fraction-free (Bareiss) elimination of the `(n+1) × (k+1)` system
+/// `[p_1 … p_k; 1 … 1] λ = [0; 1]` in big integers, then a rational back substitution.
+pub(crate) fn barycentric_exact(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
+    let k = points.len();
+    let n = points.first()?.len();
+    let rows = n + 1;
+    let mut m: Vec<Vec<BigInt>> = (0..rows)
+        .map(|r| {
+            let mut row: Vec<BigInt> = (0..k)
+                .map(|c| BigInt::from(if r < n { points[c][r] } else { 1 }))
+                .collect();
+            row.push(BigInt::from(u8::from(r == n)));
+            row
+        })
+        .collect();
+    let mut prev = BigInt::from(1);
+    for c in 0..k {
+        let p = (c..rows).find(|&r| !m[r][c].is_zero())?; // dependent columns: not independent
+        m.swap(c, p);
+        for r in c + 1..rows {
+            for cc in c + 1..=k {
+                let v = (&m[c][c] * &m[r][cc] - &m[r][c] * &m[c][cc]) / &prev;
+                m[r][cc] = v;
+            }
+            m[r][c] = BigInt::zero();
+        }
+        prev = m[c][c].clone();
+    }
+    // The remaining equations must hold: the origin lies in the affine hull.
+    if (k..rows).any(|r| !m[r][k].is_zero()) {
+        return None;
+    }
+    let mut x: Vec<BigRational> = vec![<BigRational as Zero>::zero(); k];
+    for r in (0..k).rev() {
+        let mut s = BigRational::from_integer(m[r][k].clone());
+        for c in r + 1..k {
+            s -= BigRational::from_integer(m[r][c].clone()) * &x[c];
+        }
+        x[r] = s / BigRational::from_integer(m[r][r].clone());
+    }
+    x.iter().all(|v| !v.is_negative()).then_some(x)
+}
+
 /// Decides exactly whether the origin lies in the convex hull of `points`; returns the
 /// points used and their weights (`λ ≥ 0`, `Σλ = 1`, `Σ λ d = 0`) when it does.
 pub(crate) fn origin_in_hull(points: &[Vec<i64>]) -> Option<(Vec<usize>, Vec<BigRational>)> {
     if points.is_empty() {
         return None;
+    }
+    // The float simplex is usually exactly right: one direct solve.
+    if let Some(w) = barycentric_exact(points) {
+        return Some(((0..points.len()).collect(), w));
     }
     let mut list = ListSupport {
         points: points

@@ -123,6 +123,12 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         if simplex.len() > dim + 1 || simplex.reduce_to_closest_point(params.eps).is_err() {
             return (GjkOutcome::Stalled, iteration);
         }
+        // n+1 affinely independent vertices, all with positive weight: the affine hull is the
+        // whole space, so the closest point is the origin itself (in exact arithmetic; in f64
+        // the witness check decides).
+        if simplex.len() == dim + 1 {
+            return (GjkOutcome::OriginInside, iteration);
+        }
     }
     (GjkOutcome::Stalled, params.max_iterations)
 }

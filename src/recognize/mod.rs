@@ -54,8 +54,8 @@ mod support;
 
 use crate::model::Basis;
 use exact::{
-    decide_exactly, dot_i128, origin_in_hull, round_to_certificate, verify_certificate,
-    ExactDecision, Extremes,
+    barycentric_exact, decide_exactly, dot_i128, origin_in_hull, round_to_certificate,
+    verify_certificate, ExactDecision, Extremes,
 };
 use gjk::{gjk, GjkOutcome, GjkParams};
 use lifted::LiftedSet;
@@ -513,28 +513,44 @@ impl Recognizer {
                     converged,
                 } => {
                     let y: Vec<f64> = direction.iter().zip(&scale).map(|(a, s)| a * s).collect();
-                    certified = round_to_certificate(&sets, &y, margin, &self.max_abs);
+                    let tight: Vec<Vec<i64>> = self
+                        .simplex
+                        .vertices
+                        .iter()
+                        .map(|v| sets.difference(&v.tag))
+                        .collect();
+                    certified = round_to_certificate(&sets, &y, margin, &self.max_abs, &tight);
                     if certified.is_some() || converged || attempt == 1 {
                         break;
                     }
                     // Converge to the largest-margin direction, then round again.
                     params.first_separation = false;
                 }
-                GjkOutcome::OriginInside => {
+                ref outcome @ (GjkOutcome::OriginInside | GjkOutcome::Stalled) => {
+                    // Stalled runs usually end on a (numerically) full simplex around the
+                    // origin: its exact check is cheap, and decisive when it holds.
+                    if matches!(outcome, GjkOutcome::Stalled) && self.simplex.len() > n + 1 {
+                        break;
+                    }
                     let points: Vec<Vec<i64>> = self
                         .simplex
                         .vertices
                         .iter()
                         .map(|v| sets.difference(&v.tag))
                         .collect();
-                    if let Some((used, weights)) = origin_in_hull(&points) {
+                    let found = if matches!(outcome, GjkOutcome::Stalled) {
+                        barycentric_exact(&points).map(|w| ((0..points.len()).collect(), w))
+                    } else {
+                        origin_in_hull(&points)
+                    };
+                    if let Some((used, weights)) = found {
                         let tags: Vec<Tag> =
                             used.iter().map(|&i| self.simplex.vertices[i].tag).collect();
                         witness = Some((tags, weights));
                     }
                     break;
                 }
-                GjkOutcome::Empty | GjkOutcome::Stalled => break,
+                GjkOutcome::Empty => break,
             }
         }
         if let Some((a, e)) = certified {

@@ -1,0 +1,439 @@
+//! Greedy decomposition of contours into pieces described by Digital Level Layers.
+//!
+//! # Outliers of a piece (paper section 1.3, Figure 7)
+//! For a piece `p_i … p_j` of a contour and each interior index `k` in `i+1 … j−1`, every
+//! 4-neighbour `q` of `p_k` that is not a pixel of the piece is an outlier:
+//! * on the RIGHT if the direction `q − p_k` lies strictly inside the angular sweep from
+//!   `p_{k+1} − p_k` to `p_{k−1} − p_k` turning clockwise on screen,
+//! * on the LEFT if it lies strictly inside the sweep from `p_{k−1} − p_k` to `p_{k+1} − p_k`,
+//! * on both sides at a U-turn (`p_{k−1} = p_{k+1}`), which ends the piece.
+//!
+//! The piece is described when one layer holds its pixels with every RIGHT outlier strictly
+//! above it ([`Side::Upper`]) and every LEFT outlier strictly below ([`Side::Lower`]) — or the
+//! reverse, which is the same question for `−f`. For a thick shape traced with the foreground
+//! on its left, RIGHT is background and LEFT foreground; the geometric split is what lets
+//! one-pixel-thin strokes be recognized.
+//!
+//! # Greedy
+//! The first piece starts at index 0; a piece grows one pixel at a time while it is
+//! described; the next piece starts at the first pixel that failed; the last piece ends at
+//! the contour's last point. A two-pixel piece has no interior point, hence no outlier, and is
+//! always accepted. A prefix of a described piece need not be described: the greedy stops at
+//! the first failure all the same. Growth uses the incremental [`Recognizer`].
+
+use crate::contour::Contour;
+use crate::model::{Basis, Model};
+use crate::pixel::Pixel;
+use crate::recognize::{Certificate, Outcome, Recognizer, Side, Stats};
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// One piece of a contour: indices `first..=last` of its points and the layer describing it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Piece {
+    /// Index of the first point in the contour.
+    pub first: usize,
+    /// Index of the last point in the contour (inclusive).
+    pub last: usize,
+    /// The exact layer: origin `p_first`, RIGHT outliers above, LEFT outliers below.
+    pub certificate: Certificate,
+}
+
+impl Piece {
+    /// Number of points of the piece.
+    pub fn len(&self) -> usize {
+        self.last + 1 - self.first
+    }
+
+    /// Always false: a piece has at least one point.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+}
+
+/// Which pixels count as outliers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum OutlierRule {
+    /// 4-neighbours of interior points that are not pixels of the piece (the documented rule).
+    #[default]
+    NotInPiece,
+    /// 4-neighbours of interior points whatever they are, as the paper authors' code does.
+    Any,
+}
+
+/// The decomposition of every contour of an image.
+#[derive(Clone, Debug)]
+pub struct Decomposition {
+    /// The model whose layers describe the pieces.
+    pub model: Model,
+    /// The contours, in tracing order.
+    pub contours: Vec<Contour>,
+    /// The pieces of each contour, in order along it.
+    pub pieces: Vec<Vec<Piece>>,
+    /// Work done by the recognizers.
+    pub stats: Stats,
+}
+
+impl Decomposition {
+    /// Total number of pieces.
+    pub fn piece_count(&self) -> usize {
+        self.pieces.iter().map(Vec::len).sum()
+    }
+}
+
+/// Index of an 8-direction, clockwise on screen from "right": right 0, down-right 1, down 2,
+/// down-left 3, left 4, up-left 5, up 6, up-right 7.
+fn direction(from: Pixel, to: Pixel) -> Option<u8> {
+    Some(match (to.x - from.x, to.y - from.y) {
+        (1, 0) => 0,
+        (1, 1) => 1,
+        (0, 1) => 2,
+        (-1, 1) => 3,
+        (-1, 0) => 4,
+        (-1, -1) => 5,
+        (0, -1) => 6,
+        (1, -1) => 7,
+        _ => return None,
+    })
+}
+
+/// `offset` strictly inside the clockwise sweep from `start` spanning `span` steps of 45°.
+#[inline]
+fn strictly_inside(d: u8, start: u8, end: u8) -> bool {
+    let span = match (end + 8 - start) % 8 {
+        0 => 8,
+        s => s,
+    };
+    let offset = (d + 8 - start) % 8;
+    offset > 0 && offset < span
+}
+
+/// The sides of the four 4-neighbours of `cur`, an interior point between `prev` and `next`:
+/// `(neighbour, on the right, on the left)`. Returns `None` if the steps are not 8-adjacent.
+pub fn neighbour_sides(prev: Pixel, cur: Pixel, next: Pixel) -> Option<[(Pixel, bool, bool); 4]> {
+    let a = direction(cur, prev)?;
+    let b = direction(cur, next)?;
+    let mut out = [(cur, false, false); 4];
+    for (k, slot) in out.iter_mut().enumerate() {
+        let d = 2 * k as u8;
+        let q = match d {
+            0 => Pixel::new(cur.x + 1, cur.y),
+            2 => Pixel::new(cur.x, cur.y + 1),
+            4 => Pixel::new(cur.x - 1, cur.y),
+            _ => Pixel::new(cur.x, cur.y - 1),
+        };
+        *slot = (q, strictly_inside(d, b, a), strictly_inside(d, a, b));
+    }
+    Some(out)
+}
+
+/// The RIGHT and LEFT outliers of the piece `points[first..=last]` (each pixel once per side).
+pub fn piece_outliers(
+    points: &[Pixel],
+    first: usize,
+    last: usize,
+    rule: OutlierRule,
+) -> (Vec<Pixel>, Vec<Pixel>) {
+    let mut right = Vec::new();
+    let mut left = Vec::new();
+    if last >= points.len() || last < first + 2 {
+        return (right, left);
+    }
+    let piece: std::collections::HashSet<Pixel> = points[first..=last].iter().copied().collect();
+    for k in first + 1..last {
+        let Some(sides) = neighbour_sides(points[k - 1], points[k], points[k + 1]) else {
+            continue;
+        };
+        for (q, r, l) in sides {
+            if rule == OutlierRule::NotInPiece && piece.contains(&q) {
+                continue;
+            }
+            if r && !right.contains(&q) {
+                right.push(q);
+            }
+            if l && !left.contains(&q) {
+                left.push(q);
+            }
+        }
+    }
+    (right, left)
+}
+
+/// Per-piece bookkeeping of the greedy: multiplicities of piece pixels and of outliers.
+#[derive(Default)]
+struct Growth {
+    in_piece: HashMap<Pixel, u32>,
+    /// Outlier → (times RIGHT, times LEFT).
+    outliers: HashMap<Pixel, (u32, u32)>,
+}
+
+fn xy(p: Pixel) -> [i64; 2] {
+    [p.x as i64, p.y as i64]
+}
+
+/// Decomposes one contour greedily with the given recognizer (reset for every piece).
+pub fn decompose_points(points: &[Pixel], rec: &mut Recognizer, rule: OutlierRule) -> Vec<Piece> {
+    let n = points.len();
+    let mut pieces = Vec::new();
+    let mut g = Growth::default();
+    let mut i = 0;
+    while i < n {
+        rec.reset(&xy(points[i]));
+        g.in_piece.clear();
+        g.outliers.clear();
+        rec.add_inlier(&xy(points[i]));
+        *g.in_piece.entry(points[i]).or_default() += 1;
+        // One point, no outlier: described by the zero function.
+        let mut certificate = match rec.recognize() {
+            Outcome::Described => rec.certificate(),
+            _ => None,
+        }
+        .unwrap_or_else(|| Certificate {
+            origin: xy(points[i]).to_vec(),
+            coefficients: vec![0; rec.basis().dim()],
+            lower: 0,
+            upper: 0,
+            above: None,
+            below: None,
+        });
+        let mut j = i;
+        while j + 1 < n {
+            let p = points[j + 1];
+            if rule == OutlierRule::NotInPiece {
+                if let Some((r, l)) = g.outliers.remove(&p) {
+                    if r > 0 {
+                        rec.remove_outlier(&xy(p), Side::Upper);
+                    }
+                    if l > 0 {
+                        rec.remove_outlier(&xy(p), Side::Lower);
+                    }
+                }
+            }
+            rec.add_inlier(&xy(p));
+            *g.in_piece.entry(p).or_default() += 1;
+            if j > i {
+                if let Some(sides) = neighbour_sides(points[j - 1], points[j], p) {
+                    for (q, right, left) in sides {
+                        if !(right || left)
+                            || (rule == OutlierRule::NotInPiece && g.in_piece.contains_key(&q))
+                        {
+                            continue;
+                        }
+                        let e = g.outliers.entry(q).or_default();
+                        if right {
+                            if e.0 == 0 {
+                                rec.add_outlier(&xy(q), Side::Upper);
+                            }
+                            e.0 += 1;
+                        }
+                        if left {
+                            if e.1 == 0 {
+                                rec.add_outlier(&xy(q), Side::Lower);
+                            }
+                            e.1 += 1;
+                        }
+                    }
+                }
+            }
+            match rec.recognize() {
+                Outcome::Described => match rec.certificate() {
+                    Some(c) => {
+                        certificate = c;
+                        j += 1;
+                    }
+                    None => break,
+                },
+                Outcome::NotDescribed | Outcome::Undecided => break,
+            }
+        }
+        pieces.push(Piece {
+            first: i,
+            last: j,
+            certificate,
+        });
+        i = j + 1;
+    }
+    pieces
+}
+
+/// Decomposes every contour with `model`, contours in parallel (rayon); the result does not
+/// depend on the number of threads.
+pub fn decompose(contours: Vec<Contour>, model: Model, rule: OutlierRule) -> Decomposition {
+    let basis: Arc<dyn Basis> = Arc::new(model.basis());
+    let results: Vec<(Vec<Piece>, Stats)> = contours
+        .par_iter()
+        .map_init(
+            || Recognizer::new(basis.clone(), &[0, 0]),
+            |rec, c| match rec.as_mut() {
+                Some(rec) => {
+                    let before = rec.stats();
+                    let pieces = decompose_points(&c.points, rec, rule);
+                    let after = rec.stats();
+                    (pieces, stats_difference(&after, &before))
+                }
+                None => (Vec::new(), Stats::default()),
+            },
+        )
+        .collect();
+    let mut stats = Stats::default();
+    let mut pieces = Vec::with_capacity(results.len());
+    for (p, s) in results {
+        stats.add(&s);
+        pieces.push(p);
+    }
+    Decomposition {
+        model,
+        contours,
+        pieces,
+        stats,
+    }
+}
+
+fn stats_difference(a: &Stats, b: &Stats) -> Stats {
+    Stats {
+        queries: a.queries - b.queries,
+        certificate_reused: a.certificate_reused - b.certificate_reused,
+        float_runs: a.float_runs - b.float_runs,
+        float_iterations: a.float_iterations - b.float_iterations,
+        exact_fallbacks: a.exact_fallbacks - b.exact_fallbacks,
+        undecided: a.undecided - b.undecided,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recognize::recognize;
+
+    fn px(v: &[(i32, i32)]) -> Vec<Pixel> {
+        v.iter().map(|&(x, y)| Pixel::new(x, y)).collect()
+    }
+
+    #[test]
+    fn sides_of_a_straight_step() {
+        // Walking right on screen: down is on the right, up on the left.
+        let s = neighbour_sides(Pixel::new(0, 0), Pixel::new(1, 0), Pixel::new(2, 0)).unwrap();
+        let down = s.iter().find(|t| t.0 == Pixel::new(1, 1)).unwrap();
+        let up = s.iter().find(|t| t.0 == Pixel::new(1, -1)).unwrap();
+        assert_eq!((down.1, down.2), (true, false));
+        assert_eq!((up.1, up.2), (false, true));
+        // The step neighbours themselves are on no side.
+        let right = s.iter().find(|t| t.0 == Pixel::new(2, 0)).unwrap();
+        assert_eq!((right.1, right.2), (false, false));
+        // U-turn: every other neighbour on both sides.
+        let u = neighbour_sides(Pixel::new(0, 0), Pixel::new(1, 0), Pixel::new(0, 0)).unwrap();
+        assert_eq!(u.iter().filter(|t| t.1 && t.2).count(), 3);
+    }
+
+    /// The border of a filled axis-aligned square, counter-clockwise on screen from its top-left
+    /// pixel (foreground on the left): down the left side, right along the bottom, up, left.
+    fn square(n: i32) -> Vec<Pixel> {
+        let mut v = Vec::new();
+        for y in 0..n - 1 {
+            v.push((0, y));
+        }
+        for x in 0..n - 1 {
+            v.push((x, n - 1));
+        }
+        for y in (1..n).rev() {
+            v.push((n - 1, y));
+        }
+        for x in (1..n).rev() {
+            v.push((x, 0));
+        }
+        px(&v)
+    }
+
+    #[test]
+    fn a_square_gives_four_lines() {
+        let pts = square(12);
+        let basis: Arc<dyn Basis> = Arc::new(Model::Line.basis());
+        let mut rec = Recognizer::new(basis.clone(), &[0, 0]).unwrap();
+        let pieces = decompose_points(&pts, &mut rec, OutlierRule::NotInPiece);
+        assert_eq!(pieces.len(), 4, "{pieces:?}");
+        assert_eq!(pieces[0].first, 0);
+        assert_eq!(pieces.last().unwrap().last, pts.len() - 1);
+        for w in pieces.windows(2) {
+            assert_eq!(w[0].last + 1, w[1].first);
+        }
+        check_pieces(&pts, &pieces, Model::Line, OutlierRule::NotInPiece);
+    }
+
+    /// Every certificate re-checked on the piece's own sets; greedy maximality.
+    pub(crate) fn check_pieces(pts: &[Pixel], pieces: &[Piece], model: Model, rule: OutlierRule) {
+        let arc: Arc<dyn Basis> = Arc::new(model.basis());
+        let basis = arc.as_ref();
+        for (k, p) in pieces.iter().enumerate() {
+            let (right, left) = piece_outliers(pts, p.first, p.last, rule);
+            let c = &p.certificate;
+            let v = |q: Pixel| c.value(basis, &xy(q)).unwrap();
+            for q in &pts[p.first..=p.last] {
+                let f = v(*q);
+                assert!(c.lower <= f && f <= c.upper, "inlier {q:?} of piece {k}");
+            }
+            for q in &right {
+                assert!(v(*q) > c.upper, "right outlier {q:?} of piece {k}");
+            }
+            for q in &left {
+                assert!(v(*q) < c.lower, "left outlier {q:?} of piece {k}");
+            }
+            // Maximality: the piece plus the next point is not described.
+            if p.last + 1 < pts.len() {
+                let (r2, l2) = piece_outliers(pts, p.first, p.last + 1, rule);
+                let inl: Vec<Vec<i64>> = pts[p.first..=p.last + 1]
+                    .iter()
+                    .map(|&q| xy(q).to_vec())
+                    .collect();
+                let r2: Vec<Vec<i64>> = r2.iter().map(|&q| xy(q).to_vec()).collect();
+                let l2: Vec<Vec<i64>> = l2.iter().map(|&q| xy(q).to_vec()).collect();
+                let (o, _, _) = recognize(arc.clone(), &inl, &r2, &l2);
+                assert_eq!(o, Outcome::NotDescribed, "piece {k} could have grown");
+            }
+        }
+    }
+
+    #[test]
+    fn digital_circle_is_few_circle_pieces() {
+        // Border of a disc of radius 30, traced in order by angle.
+        let r = 30.0f64;
+        let inside =
+            |x: i32, y: i32| ((x as f64 + 0.5).powi(2) + (y as f64 + 0.5).powi(2)) <= r * r;
+        let mut border: Vec<Pixel> = Vec::new();
+        for y in -40..40 {
+            for x in -40..40 {
+                if inside(x, y)
+                    && (!inside(x + 1, y)
+                        || !inside(x - 1, y)
+                        || !inside(x, y + 1)
+                        || !inside(x, y - 1))
+                {
+                    border.push(Pixel::new(x, y));
+                }
+            }
+        }
+        // Order by angle (screen coordinates): counter-clockwise on screen = decreasing atan2.
+        border.sort_by(|a, b| {
+            let fa = -((a.y as f64 + 0.5).atan2(a.x as f64 + 0.5));
+            let fb = -((b.y as f64 + 0.5).atan2(b.x as f64 + 0.5));
+            fa.partial_cmp(&fb).unwrap()
+        });
+        // Must be an 8-connected path for this test to mean anything.
+        assert!(border.windows(2).all(|w| w[0].is_8_adjacent(w[1])));
+        let mut counts = Vec::new();
+        for model in [Model::Line, Model::Circle, Model::Conic] {
+            let basis: Arc<dyn Basis> = Arc::new(model.basis());
+            let mut rec = Recognizer::new(basis.clone(), &[0, 0]).unwrap();
+            let pieces = decompose_points(&border, &mut rec, OutlierRule::NotInPiece);
+            check_pieces(&border, &pieces, model, OutlierRule::NotInPiece);
+            counts.push(pieces.len());
+        }
+        // A digital circle border is a few annuli (the band of border pixels is not one
+        // layer all round: diagonal stairs reach further in than axis-parallel runs).
+        assert!(
+            counts[2] <= counts[1] && counts[1] <= 4,
+            "circle/conic pieces {counts:?}"
+        );
+        assert!(counts[0] >= 4 * counts[1], "line pieces {counts:?}");
+    }
+}
