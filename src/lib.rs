@@ -3,8 +3,12 @@
 //! Implements *Digital Level Layers for Digital Curve Decomposition and Vectorization*
 //! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014).
 
+mod bitmap;
 mod error;
 mod pixel;
 
+pub use bitmap::{
+    load_memory, load_path, threshold_image, Compat, LoadOptions, Loaded, Mask, Threshold,
+};
 pub use error::Error;
 pub use pixel::Pixel;
