@@ -182,7 +182,9 @@ pub enum Compat {
     Default,
     /// The reference code of the IPOL article (`gjknd_1.1`): 8-bit grey as libpng gives it,
     /// alpha stripped without compositing (a transparent black pixel is black), RGB to grey
-    /// with libpng's default weights `(6968 R + 23434 G + 2366 B + 16384) >> 15`, 16-bit
+    /// with libpng's default weights, truncated: `(6968 R + 23434 G + 2366 B) >> 15` (libpng
+    /// 1.6's 8-bit path without gamma; the rounded variant `+ 16384` flips pixels of the demo
+    /// image `card_suits` against the reference's output), 16-bit
     /// samples reduced to their high byte. Use it with [`Threshold::Otsu`] to match the
     /// reference binarisation (ink = grey <= Otsu's t).
     Ipol,
@@ -349,10 +351,10 @@ fn default_grey(img: &DynamicImage) -> Vec<u8> {
     }
 }
 
-/// libpng's default `rgb_to_gray` on 8-bit samples.
+/// libpng's default `rgb_to_gray` on 8-bit samples (truncating, as its no-gamma path does).
 #[inline]
 fn libpng_grey(r: u8, g: u8, b: u8) -> u8 {
-    ((6968 * u32::from(r) + 23434 * u32::from(g) + 2366 * u32::from(b) + 16384) >> 15) as u8
+    ((6968 * u32::from(r) + 23434 * u32::from(g) + 2366 * u32::from(b)) >> 15) as u8
 }
 
 /// Grey levels as the IPOL reference reads them (see [`Compat::Ipol`]).
@@ -550,7 +552,7 @@ mod tests {
                 + 23434.0 * f64::from(rgb[1])
                 + 2366.0 * f64::from(rgb[2]))
                 / 32768.0;
-            check_grey(rgb, (v + 0.5).floor() as u8, Compat::Ipol);
+            check_grey(rgb, v.floor() as u8, Compat::Ipol);
         }
         let ipol = LoadOptions {
             compat: Compat::Ipol,
