@@ -58,7 +58,14 @@ pub enum Convention {
 }
 
 /// Traces every border of `mask` in the given convention (see [`Convention`]).
+///
+/// Pixel coordinates are `i32`: a mask wider or taller than `i32::MAX - 2` pixels gives no
+/// contours (the loader's pixel limit keeps images far below that).
 pub fn trace(mask: &Mask, convention: Convention) -> Vec<Contour> {
+    let limit = (i32::MAX - 2) as u32;
+    if mask.width() > limit || mask.height() > limit {
+        return Vec::new();
+    }
     match convention {
         Convention::Default => trace_default(mask),
         Convention::Ipol => trace_ipol(mask),
@@ -1064,6 +1071,28 @@ mod tests {
         );
         assert!(trace(&Mask::new(1, 1), Convention::Ipol).is_empty());
         assert!(trace(&Mask::from_fn(3, 3, |_, _| true), Convention::Ipol).is_empty());
+    }
+
+    #[test]
+    fn ipol_invariants_on_samples() {
+        for e in std::fs::read_dir("samples").unwrap() {
+            let path = e.unwrap().path();
+            if path.extension().is_some_and(|x| x == "png") {
+                let l = load_path(&path, &LoadOptions::default()).unwrap();
+                check_ipol(&l.mask);
+                let open = trace(&l.mask, Convention::Ipol)
+                    .iter()
+                    .filter(|c| !c.closed)
+                    .count();
+                // Only syn_border_touching has shapes cut by the image border (three).
+                let expected = if path.ends_with("syn_border_touching.png") {
+                    3
+                } else {
+                    0
+                };
+                assert_eq!(open, expected, "{}", path.display());
+            }
+        }
     }
 
     const IPOL: [(&str, usize); 10] = [
