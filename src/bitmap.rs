@@ -718,6 +718,7 @@ mod tests {
         // Zero size (a PNM header can say so).
         for zero in [&b"P5\n0 5\n255\n"[..], &b"P5\n3 0\n255\n"[..]] {
             let e = load_memory(zero, &LoadOptions::default()).unwrap_err();
+            assert!(matches!(e, Error::Empty { .. }), "{e}");
             assert_one_line(&e);
         }
         // Missing file.
