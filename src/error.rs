@@ -24,4 +24,34 @@ pub enum Error {
         /// The operating system's reason.
         source: std::io::Error,
     },
+    /// The input could not be decoded as an image (unknown format, corrupt or truncated data).
+    #[error("cannot decode {path}: {source}")]
+    Decode {
+        /// The file (`<memory>` for in-memory input).
+        path: PathBuf,
+        /// The decoder's reason.
+        source: image::ImageError,
+    },
+    /// The image has more pixels than allowed; checked before decoding the pixels.
+    #[error("{path}: image is {width}x{height} pixels, more than the limit of {max_pixels} (raise it with --max-pixels)")]
+    TooLarge {
+        /// The file (`<memory>` for in-memory input).
+        path: PathBuf,
+        /// Width in pixels.
+        width: u32,
+        /// Height in pixels.
+        height: u32,
+        /// The limit that was exceeded.
+        max_pixels: u64,
+    },
+    /// The image has zero width or zero height.
+    #[error("{path}: image is empty ({width}x{height} pixels)")]
+    Empty {
+        /// The file (`<memory>` for in-memory input).
+        path: PathBuf,
+        /// Width in pixels.
+        width: u32,
+        /// Height in pixels.
+        height: u32,
+    },
 }

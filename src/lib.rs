@@ -3,6 +3,7 @@
 //! Implements *Digital Level Layers for Digital Curve Decomposition and Vectorization*
 //! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014).
 
+mod bitmap;
 mod contour;
 mod curve;
 mod decompose;
@@ -11,7 +12,10 @@ mod model;
 mod pixel;
 mod recognize;
 
-pub use contour::{Contour, Convention};
+pub use bitmap::{
+    load_memory, load_path, threshold_image, Compat, LoadOptions, Loaded, Mask, Threshold,
+};
+pub use contour::{trace, Contour, Convention};
 pub use curve::{
     intersect_near, level_curve_path, project, Conic, ConicKind, PathCommand, Polynomial,
     ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
