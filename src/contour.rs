@@ -1,27 +1,3 @@
-<<<<<<< HEAD
-//! Border tracing (provisional: replaced by the tracing branch).
-use crate::pixel::Pixel;
-
-/// A traced border.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Contour {
-    /// The path.
-    pub points: Vec<Pixel>,
-    /// True for a hole border.
-    pub hole: bool,
-    /// True for a closed path.
-    pub closed: bool,
-}
-
-/// Tracing conventions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Convention {
-    /// Documented default.
-    Default,
-    /// The paper's code.
-    Ipol,
-}
-=======
 //! Border tracing: turning a [`Mask`] into chains of boundary pixels.
 //!
 //! Two conventions are offered (see [`Convention`]); both are iterative and run in time
@@ -1208,4 +1184,3 @@ mod tests {
         }
     }
 }
->>>>>>> contour
