@@ -8,6 +8,7 @@ mod contour;
 mod curve;
 mod decompose;
 mod error;
+mod level;
 mod model;
 mod pixel;
 mod recognize;
@@ -24,6 +25,7 @@ pub use decompose::{
     decompose, decompose_points, neighbour_sides, piece_outliers, Decomposition, OutlierRule, Piece,
 };
 pub use error::Error;
+pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind, CurveKind};
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use pixel::Pixel;
 pub use recognize::{recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness};

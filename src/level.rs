@@ -1,0 +1,198 @@
+//! The level curve of a piece: from an exact certificate to a polynomial in SVG space.
+//!
+//! A piece's certificate says `below < lower ≤ f(p) ≤ upper < above` with
+//! `f(p) = Σ a_k f_k(p − origin)`: inliers inside the layer, RIGHT outliers above, LEFT
+//! outliers below. Contours are traced with the foreground on their left, so the RIGHT side
+//! is the background beside the piece and the border between foreground and background is
+//! the level curve `f = c` for a level `c` strictly between `upper` and `above`
+//! ([`boundary_level`]: the middle of that gap).
+//!
+//! Pixel `(x, y)` is the unit square `[x, x+1] × [y, y+1]` of SVG space, with centre
+//! `(x + 0.5, y + 0.5)`: the polynomial is moved there ([`level_polynomial`]). The pixel
+//! centres of the piece then satisfy `f ≤ upper < c` and those of its RIGHT outliers
+//! `f ≥ above > c`, so the curve passes between every inlier centre and every background
+//! centre beside it — which is what a rasterizer sampling pixel centres needs to reproduce
+//! the pixels along the piece.
+
+use crate::curve::{ConicKind, Polynomial, MAX_DEGREE};
+use crate::model::Basis;
+use crate::recognize::Certificate;
+use kurbo::Point;
+
+/// The type of a piece's level curves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CurveKind {
+    /// A straight line.
+    Line,
+    /// A circle.
+    Circle,
+    /// An ellipse that is not a circle.
+    Ellipse,
+    /// A parabola.
+    Parabola,
+    /// A hyperbola.
+    Hyperbola,
+    /// A degenerate conic (line pair, point, empty) or the zero function.
+    Degenerate,
+    /// A curve of degree higher than 2.
+    Algebraic,
+}
+
+impl CurveKind {
+    /// The JSON name: `line`, `circle`, `ellipse`, `parabola`, `hyperbola`, `degenerate`,
+    /// `algebraic`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CurveKind::Line => "line",
+            CurveKind::Circle => "circle",
+            CurveKind::Ellipse => "ellipse",
+            CurveKind::Parabola => "parabola",
+            CurveKind::Hyperbola => "hyperbola",
+            CurveKind::Degenerate => "degenerate",
+            CurveKind::Algebraic => "algebraic",
+        }
+    }
+}
+
+/// The level `c` of the border curve: the middle of the gap between the layer and its RIGHT
+/// outliers, `(upper + above) / 2`. Without RIGHT outliers, half the layer's width (at least
+/// one half) above `upper`.
+pub fn boundary_level(c: &Certificate) -> f64 {
+    match c.above {
+        Some(above) => (c.upper as f64 + above as f64) / 2.0,
+        None => c.upper as f64 + ((c.upper - c.lower) as f64).max(1.0) / 2.0,
+    }
+}
+
+/// The polynomial `f − level` in SVG coordinates (pixel centres at half-integers), with
+/// coefficients divided by their largest magnitude.
+///
+/// Returns `None` if the basis is not polynomial in two variables, its degree exceeds
+/// [`MAX_DEGREE`], or every coefficient is zero.
+pub fn level_polynomial(basis: &dyn Basis, c: &Certificate, level: f64) -> Option<Polynomial> {
+    if basis.point_dim() != 2 || c.origin.len() != 2 {
+        return None;
+    }
+    let functions = basis.polynomials()?;
+    let mut monomials = Vec::new();
+    let mut coefficients = Vec::new();
+    for (f, &a) in functions.iter().zip(&c.coefficients) {
+        if a == 0 {
+            continue;
+        }
+        for (k, e) in f {
+            if e.len() != 2 || e[0] + e[1] > MAX_DEGREE {
+                return None;
+            }
+            monomials.push((e[0], e[1]));
+            coefficients.push(a as f64 * *k as f64);
+        }
+    }
+    let scale = coefficients.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if scale == 0.0 {
+        return None;
+    }
+    coefficients.iter_mut().for_each(|v| *v /= scale);
+    let origin = Point::new(c.origin[0] as f64 + 0.5, c.origin[1] as f64 + 0.5);
+    Polynomial::from_local(&monomials, &coefficients, origin, level / scale)
+}
+
+/// The type of the level curve `poly = 0`.
+pub fn curve_kind(poly: Option<&Polynomial>) -> CurveKind {
+    let Some(poly) = poly else {
+        return CurveKind::Degenerate;
+    };
+    if poly.degree() > 2 {
+        return CurveKind::Algebraic;
+    }
+    match poly.as_conic().map(|c| c.classify()) {
+        Some(ConicKind::Line) => CurveKind::Line,
+        Some(ConicKind::Circle) => CurveKind::Circle,
+        Some(ConicKind::Ellipse) => CurveKind::Ellipse,
+        Some(ConicKind::Parabola) => CurveKind::Parabola,
+        Some(ConicKind::Hyperbola) => CurveKind::Hyperbola,
+        Some(ConicKind::Degenerate) | None => CurveKind::Degenerate,
+    }
+}
+
+/// The kind of a piece's border curve (at [`boundary_level`]).
+pub fn piece_kind(basis: &dyn Basis, c: &Certificate) -> CurveKind {
+    curve_kind(level_polynomial(basis, c, boundary_level(c)).as_ref())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Model;
+
+    fn cert(
+        origin: [i64; 2],
+        coefficients: Vec<i64>,
+        lower: i128,
+        upper: i128,
+        above: i128,
+    ) -> Certificate {
+        Certificate {
+            origin: origin.to_vec(),
+            coefficients,
+            lower,
+            upper,
+            above: Some(above),
+            below: Some(lower - 1),
+        }
+    }
+
+    #[test]
+    fn circle_is_moved_to_pixel_centres() {
+        // (u² + v²) − 10u with u = x − 3: centre (3 + 5, 4) in pixel units, i.e. (8.5, 4.5)
+        // in SVG space; level 0 → radius 5.
+        let c = cert([3, 4], vec![1, -10, 0], -25, 0, 2);
+        let p = level_polynomial(&Model::Circle.basis(), &c, 0.0).unwrap();
+        for k in 0..8 {
+            let t = k as f64 * 0.7;
+            let q = Point::new(8.5 + 5.0 * t.cos(), 4.5 + 5.0 * t.sin());
+            assert!(p.eval(q).abs() < 1e-9, "f({q:?}) = {}", p.eval(q));
+        }
+        assert_eq!(curve_kind(Some(&p)), CurveKind::Circle);
+        assert_eq!(boundary_level(&c), 1.0);
+    }
+
+    #[test]
+    fn kinds() {
+        let line = cert([0, 0], vec![2, -3], 0, 4, 5);
+        assert_eq!(piece_kind(&Model::Line.basis(), &line), CurveKind::Line);
+        // x² + 4y² = level > 0 → ellipse; x² − y² → hyperbola; x² − y → parabola.
+        let conic = Model::Conic.basis();
+        assert_eq!(
+            piece_kind(&conic, &cert([5, 5], vec![1, 0, 4, 0, 0], 10, 100, 120)),
+            CurveKind::Ellipse
+        );
+        assert_eq!(
+            piece_kind(&conic, &cert([5, 5], vec![1, 0, -1, 0, 0], 10, 100, 120)),
+            CurveKind::Hyperbola
+        );
+        assert_eq!(
+            piece_kind(&conic, &cert([5, 5], vec![1, 0, 0, 0, -1], 10, 100, 120)),
+            CurveKind::Parabola
+        );
+        assert_eq!(
+            piece_kind(
+                &Model::Poly(3).basis(),
+                &cert([0, 0], vec![1, 0, 0, 1, 0, 0, 0, 0, 1], 0, 9, 10)
+            ),
+            CurveKind::Algebraic
+        );
+        let zero = Certificate {
+            origin: vec![0, 0],
+            coefficients: vec![0, 0],
+            lower: 0,
+            upper: 0,
+            above: None,
+            below: None,
+        };
+        assert_eq!(
+            piece_kind(&Model::Line.basis(), &zero),
+            CurveKind::Degenerate
+        );
+    }
+}
