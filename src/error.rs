@@ -54,4 +54,20 @@ pub enum Error {
         /// Height in pixels.
         height: u32,
     },
+    /// The decomposition picture would be too large at the requested scale.
+    #[error("{path}: the decomposition picture at scale {scale} would be too large (lower --scale)")]
+    PictureTooLarge {
+        /// The picture file.
+        path: PathBuf,
+        /// The requested scale.
+        scale: u32,
+    },
+    /// An output image could not be encoded.
+    #[error("cannot encode {path}: {source}")]
+    Encode {
+        /// The file.
+        path: PathBuf,
+        /// The encoder's reason.
+        source: image::ImageError,
+    },
 }

@@ -8,8 +8,10 @@ mod contour;
 mod curve;
 mod decompose;
 mod error;
+mod export;
 mod level;
 mod model;
+mod output;
 mod pixel;
 mod recognize;
 
@@ -25,7 +27,10 @@ pub use decompose::{
     decompose, decompose_points, neighbour_sides, piece_outliers, Decomposition, OutlierRule, Piece,
 };
 pub use error::Error;
+pub use export::json::{decomposition_json, JsonHeader};
+pub use export::picture::{decomposition_picture, default_scale};
 pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind, CurveKind};
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
+pub use output::{png_bytes, write_atomic};
 pub use pixel::Pixel;
 pub use recognize::{recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness};

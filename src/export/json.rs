@@ -1,0 +1,184 @@
+//! The decomposition as JSON (`layertrace-decomposition/1`): contours, pieces, equations.
+//!
+//! ```text
+//! {"format": "layertrace-decomposition/1", "width": W, "height": H,
+//!  "threshold": 128, "invert": false, "model": "conic",
+//!  "basis": ["x^2","x*y","y^2","x","y","1"],
+//!  "contours": [{"hole": false, "points": [[x,y], ...],
+//!                "segments": [{"first": 0, "last": 17, "origin": [x0,y0],
+//!                              "coefficients": [...], "lower": l, "upper": u,
+//!                              "kind": "ellipse"}]}]}
+//! ```
+//!
+//! `f(x, y) = Σ coefficients[i] · basis_i(x − x0, y − y0)`; every inlier has
+//! `lower ≤ f ≤ upper`, the RIGHT outliers are strictly above `upper` and the LEFT ones
+//! strictly below `lower`. All these numbers are the recognizer's exact integers (the
+//! constant's coefficient is 0), so the inequalities hold exactly on the decimals written.
+
+use crate::decompose::Decomposition;
+use crate::level::piece_kind;
+use std::fmt::Write as _;
+
+/// What the JSON records besides the decomposition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JsonHeader {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// The numeric threshold used (foreground = luma < threshold, before inversion).
+    pub threshold: u8,
+    /// Whether foreground and background were swapped.
+    pub invert: bool,
+}
+
+fn quote(s: &str) -> String {
+    serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_string())
+}
+
+/// The JSON text of a decomposition (one contour per line, compact otherwise).
+pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
+    let basis = d.model.basis();
+    let basis_ref: &dyn crate::model::Basis = &basis;
+    let mut s = String::new();
+    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
+    // Writing to a String cannot fail.
+    let _ = write!(
+        s,
+        "{{\"format\": \"layertrace-decomposition/1\", \"width\": {}, \"height\": {},\n \"threshold\": {}, \"invert\": {}, \"model\": {},\n \"basis\": [{}],\n \"contours\": [",
+        header.width,
+        header.height,
+        header.threshold,
+        header.invert,
+        quote(&d.model.name()),
+        names.join(",")
+    );
+    for (ci, (c, pieces)) in d.contours.iter().zip(&d.pieces).enumerate() {
+        if ci > 0 {
+            s.push(',');
+        }
+        let _ = write!(s, "\n  {{\"hole\": {}, \"points\": [", c.hole);
+        for (i, p) in c.points.iter().enumerate() {
+            if i > 0 {
+                s.push(',');
+            }
+            let _ = write!(s, "[{},{}]", p.x, p.y);
+        }
+        s.push_str("],\n   \"segments\": [");
+        for (k, p) in pieces.iter().enumerate() {
+            if k > 0 {
+                s.push_str(",\n    ");
+            }
+            let cert = &p.certificate;
+            let coefficients: Vec<String> = cert
+                .coefficients
+                .iter()
+                .map(|v| v.to_string())
+                .chain(std::iter::once("0".to_string()))
+                .collect();
+            let _ = write!(
+                s,
+                "{{\"first\": {}, \"last\": {}, \"origin\": [{},{}], \"coefficients\": [{}], \"lower\": {}, \"upper\": {}, \"kind\": \"{}\"}}",
+                p.first,
+                p.last,
+                cert.origin.first().copied().unwrap_or(0),
+                cert.origin.get(1).copied().unwrap_or(0),
+                coefficients.join(","),
+                cert.lower,
+                cert.upper,
+                piece_kind(basis_ref, cert).name()
+            );
+        }
+        s.push_str("]}");
+    }
+    s.push_str("\n ]}\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bitmap::Mask;
+    use crate::contour::{trace, Convention};
+    use crate::decompose::{decompose, piece_outliers, OutlierRule};
+    use crate::model::{Basis, Model};
+
+    /// Parses the JSON back and re-checks every inequality from the numbers written alone.
+    #[test]
+    fn json_round_trip_holds_exactly() {
+        let mask = Mask::from_ascii(
+            "
+            ..........
+            ..######..
+            .########.
+            .###..###.
+            .###..###.
+            .########.
+            ..######..
+            ..........",
+        );
+        for model in [Model::Line, Model::Circle, Model::Conic, Model::Poly(3)] {
+            let d = decompose(
+                trace(&mask, Convention::Default),
+                model,
+                OutlierRule::NotInPiece,
+            );
+            let header = JsonHeader {
+                width: 10,
+                height: 8,
+                threshold: 128,
+                invert: false,
+            };
+            let text = decomposition_json(&d, &header);
+            let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+            assert_eq!(v["format"], "layertrace-decomposition/1");
+            assert_eq!(
+                v["basis"].as_array().unwrap().len(),
+                model.basis().dim() + 1
+            );
+            let contours = v["contours"].as_array().unwrap();
+            assert_eq!(contours.len(), 2);
+            assert_eq!(contours.iter().filter(|c| c["hole"] == true).count(), 1);
+            let basis = model.basis();
+            for (c, cj) in d.contours.iter().zip(contours) {
+                for seg in cj["segments"].as_array().unwrap() {
+                    let first = seg["first"].as_u64().unwrap() as usize;
+                    let last = seg["last"].as_u64().unwrap() as usize;
+                    let o: Vec<i64> = seg["origin"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|x| x.as_i64().unwrap())
+                        .collect();
+                    let a: Vec<i128> = seg["coefficients"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|x| x.as_i64().unwrap() as i128)
+                        .collect();
+                    let (lo, hi) = (
+                        seg["lower"].as_i64().unwrap() as i128,
+                        seg["upper"].as_i64().unwrap() as i128,
+                    );
+                    let f = |p: &crate::pixel::Pixel| -> i128 {
+                        let mut l = vec![0; basis.dim()];
+                        Basis::lift(
+                            &basis,
+                            &[p.x as i64 - o[0], p.y as i64 - o[1]],
+                            &mut l,
+                        )
+                        .unwrap();
+                        l.iter().zip(&a).map(|(x, y)| *x as i128 * y).sum::<i128>() + a[a.len() - 1]
+                    };
+                    for p in &c.points[first..=last] {
+                        assert!(lo <= f(p) && f(p) <= hi);
+                    }
+                    let (right, left) =
+                        piece_outliers(&c.points, first, last, OutlierRule::NotInPiece);
+                    assert!(right.iter().all(|p| f(p) > hi));
+                    assert!(left.iter().all(|p| f(p) < lo));
+                }
+            }
+        }
+    }
+}
