@@ -55,7 +55,9 @@ pub enum Error {
         height: u32,
     },
     /// The decomposition picture would be too large at the requested scale.
-    #[error("{path}: the decomposition picture at scale {scale} would be too large (lower --scale)")]
+    #[error(
+        "{path}: the decomposition picture at scale {scale} would be too large (lower --scale)"
+    )]
     PictureTooLarge {
         /// The picture file.
         path: PathBuf,

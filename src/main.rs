@@ -113,9 +113,11 @@ fn run(args: &Args) -> Result<(), Error> {
     }
     let ipol = args.compat.is_some();
     let opts = LoadOptions {
-        threshold: args
-            .threshold
-            .unwrap_or(if ipol { Threshold::Otsu } else { Threshold::Fixed(128) }),
+        threshold: args.threshold.unwrap_or(if ipol {
+            Threshold::Otsu
+        } else {
+            Threshold::Fixed(128)
+        }),
         invert: args.invert,
         compat: if ipol { Compat::Ipol } else { Compat::Default },
         max_pixels: args.max_pixels,

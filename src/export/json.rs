@@ -162,12 +162,8 @@ mod tests {
                     );
                     let f = |p: &crate::pixel::Pixel| -> i128 {
                         let mut l = vec![0; basis.dim()];
-                        Basis::lift(
-                            &basis,
-                            &[p.x as i64 - o[0], p.y as i64 - o[1]],
-                            &mut l,
-                        )
-                        .unwrap();
+                        Basis::lift(&basis, &[p.x as i64 - o[0], p.y as i64 - o[1]], &mut l)
+                            .unwrap();
                         l.iter().zip(&a).map(|(x, y)| *x as i128 * y).sum::<i128>() + a[a.len() - 1]
                     };
                     for p in &c.points[first..=last] {

@@ -1,0 +1,144 @@
+//! The decomposition on every bundled sample: certificates re-checked independently, greedy
+//! maximality proved by exact witnesses, piece counts ordered by model, and the CLI run.
+
+use layertrace::{
+    decompose, load_path, piece_outliers, recognize, trace, Basis, Convention, Decomposition,
+    LoadOptions, Model, Outcome, OutlierRule, Pixel,
+};
+use std::path::Path;
+use std::process::Command;
+use std::sync::Arc;
+
+fn samples() -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir("samples")
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "png").then(|| p.to_string_lossy().into_owned())
+        })
+        .collect();
+    v.sort();
+    assert!(v.len() >= 15, "samples missing: {v:?}");
+    v
+}
+
+fn run(path: &str, model: Model) -> Decomposition {
+    let loaded = load_path(Path::new(path), &LoadOptions::default()).unwrap();
+    decompose(
+        trace(&loaded.mask, Convention::Default),
+        model,
+        OutlierRule::NotInPiece,
+    )
+}
+
+/// `a·F(p − origin)` computed here, with this file's own loop (not the library's).
+fn value(basis: &dyn Basis, origin: &[i64], a: &[i64], p: Pixel) -> i128 {
+    let mut f = vec![0i64; basis.dim()];
+    basis
+        .lift(&[p.x as i64 - origin[0], p.y as i64 - origin[1]], &mut f)
+        .unwrap();
+    f.iter().zip(a).map(|(&x, &y)| x as i128 * y as i128).sum()
+}
+
+fn xy(p: &Pixel) -> Vec<i64> {
+    vec![p.x as i64, p.y as i64]
+}
+
+#[test]
+fn certificates_and_maximality_on_every_sample() {
+    for path in samples() {
+        let mut counts = Vec::new();
+        for model in [Model::Line, Model::Circle, Model::Conic] {
+            let d = run(&path, model);
+            let basis = model.basis();
+            let arc: Arc<dyn Basis> = Arc::new(model.basis());
+            assert_eq!(d.stats.undecided, 0, "{path} {model}");
+            for (c, pieces) in d.contours.iter().zip(&d.pieces) {
+                let n = c.points.len();
+                // The pieces tile the contour in order.
+                assert_eq!(pieces.first().map(|p| p.first), Some(0));
+                assert_eq!(pieces.last().map(|p| p.last), Some(n - 1));
+                for w in pieces.windows(2) {
+                    assert_eq!(w[0].last + 1, w[1].first, "{path} {model}");
+                }
+                for p in pieces {
+                    let cert = &p.certificate;
+                    assert_eq!(cert.origin, xy(&c.points[p.first]));
+                    let v = |q: Pixel| value(&basis, &cert.origin, &cert.coefficients, q);
+                    let inl: Vec<i128> = c.points[p.first..=p.last].iter().map(|&q| v(q)).collect();
+                    assert_eq!(inl.iter().min(), Some(&cert.lower), "{path} {model}");
+                    assert_eq!(inl.iter().max(), Some(&cert.upper), "{path} {model}");
+                    let (right, left) =
+                        piece_outliers(&c.points, p.first, p.last, OutlierRule::NotInPiece);
+                    assert!(
+                        right.iter().all(|&q| v(q) > cert.upper),
+                        "{path} {model} right"
+                    );
+                    assert!(
+                        left.iter().all(|&q| v(q) < cert.lower),
+                        "{path} {model} left"
+                    );
+                    // Maximal: one more point is not described, with a verified witness.
+                    if p.last + 1 < n {
+                        let (r2, l2) =
+                            piece_outliers(&c.points, p.first, p.last + 1, OutlierRule::NotInPiece);
+                        let pts: Vec<Vec<i64>> =
+                            c.points[p.first..=p.last + 1].iter().map(xy).collect();
+                        let r2: Vec<Vec<i64>> = r2.iter().map(xy).collect();
+                        let l2: Vec<Vec<i64>> = l2.iter().map(xy).collect();
+                        let (o, _, w) = recognize(arc.clone(), &pts, &r2, &l2);
+                        assert_eq!(o, Outcome::NotDescribed, "{path} {model}: piece could grow");
+                        assert!(w.unwrap().verify(&basis));
+                    }
+                }
+            }
+            counts.push(d.piece_count());
+        }
+        // Richer models need no more pieces on glyphs and words (a greedy can in principle
+        // violate this; on these shapes it must not).
+        let name = Path::new(&path)
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        if name.starts_with("glyph") || name.starts_with("word") || name.starts_with("digits") {
+            assert!(
+                counts[2] <= counts[1] && counts[1] <= counts[0],
+                "{name}: line/circle/conic {counts:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn cli_writes_json_and_picture() {
+    let dir = std::env::temp_dir().join(format!("layertrace-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (json, png) = (dir.join("g.json"), dir.join("g.png"));
+    let out = Command::new(env!("CARGO_BIN_EXE_layertrace"))
+        .args([
+            "samples/glyph_g_liberationserif_cap120.png",
+            "--model",
+            "circle",
+            "--json",
+        ])
+        .arg(&json)
+        .arg("--decomposition")
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = String::from_utf8_lossy(&out.stderr);
+    assert!(summary.contains("3 contours (2 holes)"), "{summary}");
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(v["model"], "circle");
+    assert_eq!(v["basis"], serde_json::json!(["x^2+y^2", "x", "y", "1"]));
+    assert_eq!(v["contours"].as_array().unwrap().len(), 3);
+    let img = image::open(&png).unwrap();
+    assert!(img.width() >= 110 * 4);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
