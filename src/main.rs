@@ -166,16 +166,21 @@ fn run(args: &Args) -> Result<(), Error> {
             *kinds.entry(k.name()).or_default() += 1;
         }
         let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{k} {n}")).collect();
+        let kinds = if kinds.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", kinds.join(", "))
+        };
         let holes = d.contours.iter().filter(|c| c.hole).count();
         eprintln!(
-            "{}: {}x{}, {} contours ({} holes), {} pieces ({}), model {}, {:.1} ms",
+            "{}: {}x{}, {} contours ({} holes), {} pieces{}, model {}, {:.1} ms",
             args.input.display(),
             mask.width(),
             mask.height(),
             d.contours.len(),
             holes,
             d.piece_count(),
-            kinds.join(", "),
+            kinds,
             d.model,
             start.elapsed().as_secs_f64() * 1e3
         );

@@ -1,0 +1,179 @@
+//! Bad inputs get a one-line error and exit code 1, never a panic or a partial file; the same
+//! input gives byte-identical output across runs and thread counts.
+
+use layertrace::{
+    decompose, decomposition_json, load_path, trace, Convention, JsonHeader, LoadOptions, Model,
+    OutlierRule,
+};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("layertrace-rob-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// PNG's CRC-32 (to forge a valid header).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 == 1 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// Runs the CLI, returns (exit code, stderr).
+fn cli(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_layertrace"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn bad_inputs_fail_cleanly() {
+    let dir = scratch("bad");
+    let d = |n: &str| dir.join(n).to_string_lossy().into_owned();
+    let good = std::fs::read("samples/sil_horse_skimage.png").unwrap();
+    std::fs::write(d("truncated.png"), &good[..good.len() / 3]).unwrap();
+    std::fs::write(d("text.png"), b"this is not an image\n").unwrap();
+    std::fs::write(d("empty.png"), b"").unwrap();
+    // A PNM header claiming zero width.
+    std::fs::write(d("zero.pgm"), b"P5\n0 10\n255\n").unwrap();
+    // A PNG header claiming 100000 x 100000 pixels (checked before decoding).
+    let mut huge = good.clone();
+    huge[16..20].copy_from_slice(&100_000u32.to_be_bytes());
+    huge[20..24].copy_from_slice(&100_000u32.to_be_bytes());
+    let crc = crc32(&huge[12..29]);
+    huge[29..33].copy_from_slice(&crc.to_be_bytes());
+    std::fs::write(d("huge.png"), &huge).unwrap();
+    let json = d("out.json");
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (vec![d("missing.png")], "cannot read"),
+        (vec![dir.to_string_lossy().into_owned()], "cannot read"),
+        (vec![d("truncated.png")], "cannot decode"),
+        (vec![d("text.png")], "cannot decode"),
+        (vec![d("empty.png")], ""),
+        (vec![d("zero.pgm")], ""),
+        (vec![d("huge.png")], "--max-pixels"),
+        (
+            vec![
+                "samples/syn_tiny_blobs.png".into(),
+                "--max-pixels".into(),
+                "100".into(),
+            ],
+            "--max-pixels",
+        ),
+        (
+            vec![
+                "samples/syn_tiny_blobs.png".into(),
+                "--json".into(),
+                d("no/such/dir/out.json"),
+            ],
+            "cannot write",
+        ),
+    ];
+    for (args, needle) in cases {
+        let mut a: Vec<&str> = args.iter().map(String::as_str).collect();
+        a.extend(["--json", json.as_str()]);
+        if args.iter().any(|s| s == "--json") {
+            a.truncate(a.len() - 2);
+        }
+        let (code, err) = cli(&a);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert_eq!(
+            err.trim_end().lines().count(),
+            1,
+            "{args:?}: not one line: {err}"
+        );
+        assert!(err.starts_with("layertrace: "), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            !Path::new(&json).exists(),
+            "{args:?}: output written on failure"
+        );
+    }
+    // Usage errors: exit code 2.
+    assert_eq!(
+        cli(&["samples/syn_tiny_blobs.png", "--model", "spline"]).0,
+        2
+    );
+    assert_eq!(
+        cli(&["samples/syn_tiny_blobs.png", "--threshold", "300"]).0,
+        2
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn blank_and_full_images() {
+    let dir = scratch("blank");
+    let white = image::GrayImage::from_pixel(7, 5, image::Luma([255]));
+    let black = image::GrayImage::from_pixel(7, 5, image::Luma([0]));
+    white.save(dir.join("white.png")).unwrap();
+    black.save(dir.join("black.png")).unwrap();
+    let load = |n: &str| load_path(&dir.join(n), &LoadOptions::default()).unwrap();
+    assert!(trace(&load("white.png").mask, Convention::Default).is_empty());
+    // All foreground: one contour, the image border (7·2 + 3·2 pixels).
+    let cs = trace(&load("black.png").mask, Convention::Default);
+    assert_eq!(cs.len(), 1);
+    assert_eq!(cs[0].points.len(), 20);
+    for f in ["white.png", "black.png"] {
+        let path = dir.join(f).to_string_lossy().into_owned();
+        let out = dir.join("o.json").to_string_lossy().into_owned();
+        let (code, err) = cli(&[&path, "--json", &out]);
+        assert_eq!(code, 0, "{err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn json_with_threads(path: &str, model: Model, threads: usize) -> String {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let loaded = load_path(Path::new(path), &LoadOptions::default()).unwrap();
+        let d = decompose(
+            trace(&loaded.mask, Convention::Default),
+            model,
+            OutlierRule::NotInPiece,
+        );
+        let h = JsonHeader {
+            width: loaded.mask.width(),
+            height: loaded.mask.height(),
+            threshold: loaded.threshold,
+            invert: false,
+        };
+        decomposition_json(&d, &h)
+    })
+}
+
+#[test]
+fn deterministic_across_runs_and_threads() {
+    for path in [
+        "samples/lineart_cat_symbola_h300.png",
+        "samples/digits_liberationsans_cap40.png",
+    ] {
+        for model in [Model::Line, Model::Conic] {
+            let one = json_with_threads(path, model, 1);
+            assert_eq!(one, json_with_threads(path, model, 2), "{path} {model}");
+            assert_eq!(one, json_with_threads(path, model, 4), "{path} {model}");
+            assert_eq!(one, json_with_threads(path, model, 1), "{path} {model}");
+        }
+    }
+}
