@@ -11,7 +11,7 @@ use super::simplex::Vertex;
 use super::Side;
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Zero};
+use num_traits::{One, ToPrimitive, Zero};
 
 /// Where a support point comes from: `d = F(outlier) − F(inlier)` for an upper outlier
 /// (`S⁺ − S`), `d = F(inlier) − F(outlier)` for a lower one (`S − S⁻`).
@@ -201,6 +201,28 @@ fn big_extremes(set: &LiftedSet, x: &[BigInt]) -> Option<((usize, BigInt), (usiz
     out
 }
 
+/// Extremes of `a·F` over a set in overflow-checked `i128`: `None` on overflow,
+/// `Some(None)` for an empty set.
+#[allow(clippy::type_complexity)]
+fn i128_extremes(set: &LiftedSet, a: &[i64]) -> Option<Option<((usize, i128), (usize, i128))>> {
+    let mut out: Option<((usize, i128), (usize, i128))> = None;
+    for (i, row) in set.lifted_rows().enumerate() {
+        let v = super::exact::dot_i128(a, row)?;
+        // Bounded so that any difference of two values fits as well.
+        if v.unsigned_abs() >= 1u128 << 125 {
+            return None;
+        }
+        out = Some(match out {
+            None => ((i, v), (i, v)),
+            Some((min, max)) => (
+                if v < min.1 { (i, v) } else { min },
+                if v > max.1 { (i, v) } else { max },
+            ),
+        });
+    }
+    Some(out)
+}
+
 /// Exact support points, on unscaled integer data.
 pub(crate) struct ExactSupport<'a> {
     /// The problem.
@@ -214,6 +236,24 @@ impl SupportMap<BigRational> for ExactSupport<'_> {
 
     fn support_point(&mut self, x: &[BigRational]) -> Option<Vertex<BigRational>> {
         let xi = integer_direction(x);
+        // Fast path: the reduced direction fits in i64 and no product overflows i128.
+        let g = xi
+            .iter()
+            .fold(BigInt::zero(), |g, v| num_integer::Integer::gcd(&g, v));
+        let small: Option<Vec<i64>> = if g.is_zero() {
+            None
+        } else {
+            xi.iter().map(|v| (v / &g).to_i64()).collect()
+        };
+        if let Some(a) = small {
+            let inl = i128_extremes(self.sets.inliers, &a);
+            let up = i128_extremes(self.sets.upper, &a);
+            let lo = i128_extremes(self.sets.lower, &a);
+            if let (Some(inl), Some(up), Some(lo)) = (inl, up, lo) {
+                let tag = pick(inl, up, lo, |a, b| a - b)?;
+                return Some(self.vertex(&tag));
+            }
+        }
         let inl = big_extremes(self.sets.inliers, &xi);
         let up = big_extremes(self.sets.upper, &xi);
         let lo = big_extremes(self.sets.lower, &xi);
