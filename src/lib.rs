@@ -8,6 +8,8 @@ mod contour;
 mod curve;
 mod decompose;
 mod error;
+mod export;
+mod fidelity;
 mod level;
 mod model;
 mod pixel;
@@ -25,6 +27,11 @@ pub use decompose::{
     decompose, decompose_points, neighbour_sides, piece_outliers, Decomposition, OutlierRule, Piece,
 };
 pub use error::Error;
+pub use export::svg::{
+    contour_path, svg_document, CommandCounts, ContourPath, FallbackCounts, JoinCounts,
+    SvgOptions, SvgOutput, JUNCTION_MAX_DISTANCE,
+};
+pub use fidelity::{compare, diff_image, fidelity, rasterize_svg, FidelityReport, FLATTEN_TOLERANCE};
 pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind, CurveKind};
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use pixel::Pixel;

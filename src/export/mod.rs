@@ -1,0 +1,3 @@
+//! Writing a [`Decomposition`](crate::Decomposition) out: SVG documents ([`svg`]).
+
+pub mod svg;
