@@ -22,7 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         files.sort();
     }
-    println!("| sample | model | pieces | M | L | A | Q | C | Z | fallbacks (zero/poly/junction/curve) | joins x/bridged | missing | extra | max fit err | time ms |");
+    println!("| sample | model | pieces | M | L | A | Q | C | Z | fallbacks (zero/poly/junction/curve) | joins x/bridged/cracked | missing | extra | max fit err | time ms |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for f in &files {
         let loaded = load_path(f, &LoadOptions::default())?;
@@ -43,13 +43,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let c = out.commands;
             let fb = out.fallback_reasons;
             println!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}/{}/{}) | {}/{} | {} | {} | {:.3} | {:.0} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}/{}/{}/{}) | {}/{}/{} | {} | {} | {:.3} | {:.0} |",
                 f.file_stem().unwrap_or_default().to_string_lossy(),
                 model,
                 d.piece_count(),
                 c.move_to, c.line, c.arc, c.quad, c.cubic, c.close,
                 out.fallbacks, fb.zero_certificate, fb.no_polynomial, fb.junction, fb.curve,
-                out.joins.intersection, out.joins.bridged,
+                out.joins.intersection, out.joins.bridged, out.joins.cracked,
                 r.missing, r.extra, out.max_fit_error, ms
             );
             if let Ok(dir) = std::env::var("DIFF_DIR") {

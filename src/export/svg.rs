@@ -51,7 +51,8 @@
 //! stripped; all commands are absolute.
 
 use crate::curve::{intersect_near, level_curve_path, project, PathCommand, Polynomial};
-use crate::decompose::{Decomposition, Piece};
+use crate::contour::Contour;
+use crate::decompose::{neighbour_sides, Decomposition, Piece};
 use crate::level::{boundary_level, level_polynomial};
 use crate::model::Basis;
 use crate::pixel::Pixel;
@@ -163,12 +164,15 @@ pub struct JoinCounts {
     pub intersection: usize,
     /// Otherwise: projections (or crack ends) bridged by a segment when distinct.
     pub bridged: usize,
+    /// Repaired: the two end pixels drawn along their cracks (see [`contour_path`]).
+    pub cracked: usize,
 }
 
 impl JoinCounts {
     fn add(&mut self, o: &JoinCounts) {
         self.intersection += o.intersection;
         self.bridged += o.bridged;
+        self.cracked += o.cracked;
     }
 }
 
@@ -370,6 +374,14 @@ struct Builder {
 }
 
 impl Builder {
+    fn new() -> Builder {
+        Builder {
+            start: None,
+            pen: Point::ZERO,
+            commands: Vec::new(),
+        }
+    }
+
     fn goto(&mut self, p: Point) {
         match self.start {
             None => {
@@ -399,34 +411,96 @@ impl Builder {
     }
 }
 
-/// The closed path of one contour (`points` in tracing order, first point not repeated)
-/// decomposed into `pieces` described in `basis`; fitted cubics stay within `tolerance`
-/// pixels of their curve. See the [module documentation](self) for joins and fallbacks.
+/// Rounds of [`contour_path`]'s check-and-repair of junctions.
+const REPAIR_ROUNDS: usize = 4;
+
+/// The closed path of one contour decomposed into `pieces` described in `basis`; fitted
+/// cubics stay within `tolerance` pixels of their curve. See the
+/// [module documentation](self) for joins, fallbacks and the repair of junctions.
 pub fn contour_path(
-    points: &[Pixel],
+    contour: &Contour,
     pieces: &[Piece],
     basis: &dyn Basis,
     tolerance: f64,
 ) -> ContourPath {
-    let mut out = ContourPath::default();
+    let points = &contour.points;
     let n = points.len();
-    if n == 0 {
-        return out;
-    }
-    let mut b = Builder {
-        start: None,
-        pen: Point::ZERO,
-        commands: Vec::new(),
-    };
-    if n == 1 || !pieces_valid(n, pieces) {
+    if n <= 1 || !pieces_valid(n, pieces) {
+        let mut b = Builder::new();
+        b.polyline(&crack_polyline(points, 0, n.saturating_sub(1)));
+        let mut out = ContourPath {
+            start: b.start.unwrap_or_default(),
+            commands: b.commands,
+            ..ContourPath::default()
+        };
         if n > 1 {
             out.fallbacks.invalid_pieces += 1;
         }
-        b.polyline(&crack_polyline(points, 0, n - 1));
-        out.start = b.start.unwrap_or_default();
-        out.commands = b.commands;
         return out;
     }
+    let mut cracked = vec![false; pieces.len()];
+    let mut out = build(points, pieces, basis, tolerance, &cracked);
+    for _ in 0..REPAIR_ROUNDS {
+        let bad = misplaced_points(contour, &out.to_bez_path());
+        let mut changed = false;
+        for i in bad {
+            // The junctions within two points of `i` along the (cyclic) contour.
+            let cyclic = |p: usize| {
+                let d = p.abs_diff(i);
+                d.min(n - d)
+            };
+            for (j, piece) in pieces.iter().enumerate() {
+                let near = cyclic(piece.last).min(cyclic((piece.last + 1) % n)) <= 2;
+                if near && !cracked[j] {
+                    cracked[j] = true;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+        out = build(points, pieces, basis, tolerance, &cracked);
+    }
+    out
+}
+
+/// Indices of contour points whose pixel centre, or the centre of one of their RIGHT
+/// (background) 4-neighbours, is on the wrong side of the contour's own closed path.
+fn misplaced_points(contour: &Contour, path: &BezPath) -> Vec<usize> {
+    let points = &contour.points;
+    let n = points.len();
+    let mut bad = Vec::new();
+    // Foreground has winding ≠ 0 inside an outer border and 0 inside a hole border.
+    let foreground = |p: Pixel| (kurbo::Shape::winding(path, centre(p)) != 0) != contour.hole;
+    for i in 0..n {
+        let (prev, cur, next) = (points[(i + n - 1) % n], points[i], points[(i + 1) % n]);
+        let mut ok = foreground(cur);
+        if let Some(sides) = neighbour_sides(prev, cur, next) {
+            for (q, right, _) in sides {
+                if right && !points.contains(&q) {
+                    ok &= !foreground(q);
+                }
+            }
+        }
+        if !ok {
+            bad.push(i);
+        }
+    }
+    bad
+}
+
+/// One drawing of a contour's pieces; `cracked[j]` draws the end pixel of piece `j` and the
+/// start pixel of the next one along their cracks (junction `j`).
+fn build(
+    points: &[Pixel],
+    pieces: &[Piece],
+    basis: &dyn Basis,
+    tolerance: f64,
+    cracked: &[bool],
+) -> ContourPath {
+    let mut out = ContourPath::default();
+    let mut b = Builder::new();
     let m = pieces.len();
     let mut polys: Vec<Option<Polynomial>> = pieces
         .iter()
@@ -442,6 +516,17 @@ pub fn contour_path(
             poly
         })
         .collect();
+    let pixel_cracks = |i: usize| crack_polyline(points, i, i);
+    // A piece whose both end pixels are cracked and that has no more than one pixel between
+    // them is drawn along its cracks.
+    for k in 0..m {
+        let head = cracked[(k + m - 1) % m];
+        let tail = cracked[k];
+        if polys[k].is_some() && head && tail && pieces[k].len() <= 3 {
+            polys[k] = None;
+            out.fallbacks.junction += 1;
+        }
+    }
     let cracks: Vec<Vec<Point>> = pieces
         .iter()
         .map(|p| crack_polyline(points, p.first, p.last))
@@ -449,34 +534,45 @@ pub fn contour_path(
     // Junction j joins piece j (its end) and piece (j + 1) % m (its start).
     let mut ends = vec![Point::ZERO; m];
     let mut starts = vec![Point::ZERO; m];
-    let mut intersections;
     loop {
-        intersections = 0;
+        out.joins = JoinCounts::default();
         let mut failed = Vec::new();
         for j in 0..m {
             let k = (j + 1) % m;
-            let a = points[pieces[j].last];
-            let bp = points[pieces[k].first];
-            let mid = centre(a).midpoint(centre(bp));
-            if let (Some(pa), Some(pb)) = (&polys[j], &polys[k]) {
-                if j != k {
-                    if let Some(x) = intersect_near(pa, pb, mid, JUNCTION_MAX_DISTANCE) {
-                        ends[j] = x;
-                        starts[k] = x;
-                        intersections += 1;
-                        continue;
+            let a = pieces[j].last;
+            let bi = pieces[k].first;
+            let mid = centre(points[a]).midpoint(centre(points[bi]));
+            let (end_target, start_target) = if cracked[j] {
+                out.joins.cracked += 1;
+                let ca = pixel_cracks(a);
+                let cb = pixel_cracks(bi);
+                (
+                    ca.first().copied().unwrap_or(mid),
+                    cb.last().copied().unwrap_or(mid),
+                )
+            } else {
+                if let (Some(pa), Some(pb)) = (&polys[j], &polys[k]) {
+                    if j != k {
+                        if let Some(x) = intersect_near(pa, pb, mid, JUNCTION_MAX_DISTANCE) {
+                            ends[j] = x;
+                            starts[k] = x;
+                            out.joins.intersection += 1;
+                            continue;
+                        }
                     }
                 }
-            }
+                out.joins.bridged += 1;
+                (mid, mid)
+            };
             match &polys[j] {
-                Some(pa) => match project(pa, mid, JUNCTION_MAX_DISTANCE) {
+                Some(pa) => match project(pa, end_target, JUNCTION_MAX_DISTANCE) {
                     Some(x) => ends[j] = x,
                     None => failed.push(j),
                 },
                 None => ends[j] = cracks[j].last().copied().unwrap_or(mid),
             }
             match &polys[k] {
-                Some(pb) => match project(pb, mid, JUNCTION_MAX_DISTANCE) {
+                Some(pb) => match project(pb, start_target, JUNCTION_MAX_DISTANCE) {
                     Some(x) => starts[k] = x,
                     None => failed.push(k),
                 },
@@ -492,33 +588,38 @@ pub fn contour_path(
             }
         }
     }
-    out.joins.intersection = intersections;
-    out.joins.bridged = m - intersections;
     for (k, piece) in pieces.iter().enumerate() {
         let Some(poly) = &polys[k] else {
             b.polyline(&cracks[k]);
             continue;
         };
+        let head = cracked[(k + m - 1) % m];
+        let tail = cracked[k];
+        if head {
+            b.polyline(&pixel_cracks(piece.first));
+        }
         let (from, to) = (starts[k], ends[k]);
         b.goto(from);
-        if m > 1 && (to - from).hypot() <= 1e-9 {
-            continue;
+        if !(m > 1 || head || tail) || (to - from).hypot() > 1e-9 {
+            let guide: Vec<Point> = points[piece.first..=piece.last]
+                .iter()
+                .map(|&p| centre(p))
+                .collect();
+            match level_curve_path(poly, from, to, &guide, tolerance)
+                .filter(|(cmds, _)| stays_near(from, cmds, &points[piece.first..=piece.last]))
+            {
+                Some((cmds, err)) => {
+                    out.max_fit_error = out.max_fit_error.max(err);
+                    b.extend(cmds);
+                }
+                None => {
+                    out.fallbacks.curve += 1;
+                    b.polyline(&cracks[k]);
+                }
+            }
         }
-        let guide: Vec<Point> = points[piece.first..=piece.last]
-            .iter()
-            .map(|&p| centre(p))
-            .collect();
-        match level_curve_path(poly, from, to, &guide, tolerance)
-            .filter(|(cmds, _)| stays_near(from, cmds, &points[piece.first..=piece.last]))
-        {
-            Some((cmds, err)) => {
-                out.max_fit_error = out.max_fit_error.max(err);
-                b.extend(cmds);
-            }
-            None => {
-                out.fallbacks.curve += 1;
-                b.polyline(&cracks[k]);
-            }
+        if tail {
+            b.polyline(&pixel_cracks(piece.last));
         }
     }
     out.start = b.start.unwrap_or_default();
@@ -634,7 +735,7 @@ pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOption
     let empty = Vec::new();
     for (i, contour) in d.contours.iter().enumerate() {
         let pieces = d.pieces.get(i).unwrap_or(&empty);
-        let cp = contour_path(&contour.points, pieces, &basis, tolerance);
+        let cp = contour_path(contour, pieces, &basis, tolerance);
         commands.add(&cp.counts());
         fallbacks.add(&cp.fallbacks);
         joins.add(&cp.joins);
