@@ -2,8 +2,8 @@
 //! whether it is at a piece end: `cargo run --release --example diff_detail -- FILE MODEL`.
 
 use layertrace::{
-    decompose, load_path, piece_kind, rasterize_svg, svg_document, trace, Convention,
-    LoadOptions, Model, OutlierRule, SvgOptions,
+    decompose, load_path, piece_kind, rasterize_svg, svg_document, trace, Convention, LoadOptions,
+    Model, OutlierRule, SvgOptions,
 };
 use std::path::PathBuf;
 
@@ -12,7 +12,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let file = PathBuf::from(args.get(1).ok_or("file")?);
     let model: Model = args.get(2).ok_or("model")?.parse()?;
     let mask = load_path(&file, &LoadOptions::default())?.mask;
-    let d = decompose(trace(&mask, Convention::Default), model, OutlierRule::NotInPiece);
+    let d = decompose(
+        trace(&mask, Convention::Default),
+        model,
+        OutlierRule::NotInPiece,
+    );
     let out = svg_document(&d, mask.width(), mask.height(), &SvgOptions::default());
     let actual = rasterize_svg(&out.svg, mask.width(), mask.height())?;
     let basis = model.basis();

@@ -29,9 +29,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mask = loaded.mask;
         for model in [Model::Line, Model::Circle, Model::Conic] {
             let t = Instant::now();
-            let d = decompose(trace(&mask, Convention::Default), model, OutlierRule::NotInPiece);
+            let d = decompose(
+                trace(&mask, Convention::Default),
+                model,
+                OutlierRule::NotInPiece,
+            );
             if std::env::var("STAGES").is_ok() {
-                eprintln!("decomposed {model}: {} pieces in {:?}", d.piece_count(), t.elapsed());
+                eprintln!(
+                    "decomposed {model}: {} pieces in {:?}",
+                    d.piece_count(),
+                    t.elapsed()
+                );
             }
             let out = svg_document(&d, mask.width(), mask.height(), &SvgOptions::default());
             let ms = t.elapsed().as_secs_f64() * 1e3;
@@ -61,7 +69,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         model
                     );
                     diff_image(&mask, &actual).save(PathBuf::from(&dir).join(name))?;
-                    std::fs::write(PathBuf::from(&dir).join(format!("{}_{}.svg", f.file_stem().unwrap_or_default().to_string_lossy(), model)), &out.svg)?;
+                    std::fs::write(
+                        PathBuf::from(&dir).join(format!(
+                            "{}_{}.svg",
+                            f.file_stem().unwrap_or_default().to_string_lossy(),
+                            model
+                        )),
+                        &out.svg,
+                    )?;
                 }
             }
         }

@@ -186,12 +186,11 @@ mod tests {
 
     #[test]
     fn centre_sampling() {
-        // A triangle covering the centres of (0,0), (1,0), (0,1) only... and a square that
-        // stops just short of the next centres.
+        // Rectangles stopping just short of, or starting just past, pixel centres.
         let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="4" height="3" viewBox="0 0 4 3">
             <path d="M0 0L2.49 0L2.49 1.49L0 1.49Z"/></svg>"#;
         let m = rasterize_svg(svg, 4, 3).unwrap();
-        assert_eq!(m.to_ascii(), "###.\n###.\n....\n");
+        assert_eq!(m.to_ascii(), "##..\n....\n....\n");
         let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="4" height="3">
             <path d="M0.51 0.51L4 0.51L4 3L0.51 3Z"/></svg>"#;
         let m = rasterize_svg(svg, 4, 3).unwrap();
@@ -218,7 +217,10 @@ mod tests {
         let a = Mask::from_ascii("##.\n#..");
         let b = Mask::from_ascii("#..\n#.#");
         let r = compare(&a, &b);
-        assert_eq!((r.missing, r.extra, r.foreground, r.differing), (1, 1, 3, 2));
+        assert_eq!(
+            (r.missing, r.extra, r.foreground, r.differing),
+            (1, 1, 3, 2)
+        );
         assert!((r.iou - 0.5).abs() < 1e-12);
         let img = diff_image(&a, &b);
         assert_eq!(img.get_pixel(1, 0).0, [255, 0, 0]);
@@ -234,9 +236,6 @@ mod tests {
             Err(Error::SvgParse { .. })
         ));
         let ok = r#"<svg xmlns="http://www.w3.org/2000/svg" width="4" height="4"/>"#;
-        assert!(matches!(
-            rasterize_svg(ok, 0, 4),
-            Err(Error::Raster { .. })
-        ));
+        assert!(matches!(rasterize_svg(ok, 0, 4), Err(Error::Raster { .. })));
     }
 }

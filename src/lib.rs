@@ -28,10 +28,12 @@ pub use decompose::{
 };
 pub use error::Error;
 pub use export::svg::{
-    contour_path, svg_document, CommandCounts, ContourPath, FallbackCounts, JoinCounts,
-    SvgOptions, SvgOutput, JUNCTION_MAX_DISTANCE,
+    contour_path, svg_document, CommandCounts, ContourPath, FallbackCounts, JoinCounts, SvgOptions,
+    SvgOutput, JUNCTION_MAX_DISTANCE,
 };
-pub use fidelity::{compare, diff_image, fidelity, rasterize_svg, FidelityReport, FLATTEN_TOLERANCE};
+pub use fidelity::{
+    compare, diff_image, fidelity, rasterize_svg, FidelityReport, FLATTEN_TOLERANCE,
+};
 pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind, CurveKind};
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use pixel::Pixel;

@@ -50,8 +50,8 @@
 //! nothing else. Numbers have at most [`SvgOptions::precision`] decimals, trailing zeros
 //! stripped; all commands are absolute.
 
-use crate::curve::{intersect_near, level_curve_path, project, PathCommand, Polynomial};
 use crate::contour::Contour;
+use crate::curve::{intersect_near, level_curve_path, project, PathCommand, Polynomial};
 use crate::decompose::{neighbour_sides, Decomposition, Piece};
 use crate::level::{boundary_level, level_polynomial};
 use crate::model::Basis;
@@ -145,7 +145,11 @@ pub struct FallbackCounts {
 impl FallbackCounts {
     /// All fallbacks.
     pub fn total(&self) -> usize {
-        self.zero_certificate + self.no_polynomial + self.junction + self.curve + self.invalid_pieces
+        self.zero_certificate
+            + self.no_polynomial
+            + self.junction
+            + self.curve
+            + self.invalid_pieces
     }
 
     fn add(&mut self, o: &FallbackCounts) {
@@ -318,7 +322,10 @@ fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut
 fn crack_polyline(points: &[Pixel], first: usize, last: usize) -> Vec<Point> {
     let n = points.len();
     let mut out = Vec::new();
-    for i in first..=last.min(n.saturating_sub(1)) {
+    if n == 0 {
+        return out;
+    }
+    for i in first..=last.min(n - 1) {
         let (prev, next) = if n == 1 {
             (None, None)
         } else {
@@ -688,12 +695,7 @@ fn write_path_data(cp: &ContourPath, precision: usize, s: &mut String) {
                 number(a.radii.y, precision, s);
                 s.push(' ');
                 number(a.x_rotation.to_degrees().rem_euclid(360.0), precision, s);
-                let _ = write!(
-                    s,
-                    " {} {} ",
-                    u8::from(a.large_arc),
-                    u8::from(a.sweep)
-                );
+                let _ = write!(s, " {} {} ", u8::from(a.large_arc), u8::from(a.sweep));
                 point(a.to, precision, s);
             }
         }
@@ -763,5 +765,110 @@ pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOption
         fallbacks: fallbacks.total(),
         fallback_reasons: fallbacks,
         joins,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bitmap::Mask;
+    use crate::contour::{trace, Convention};
+    use crate::decompose::{decompose, OutlierRule};
+    use crate::fidelity::fidelity;
+    use crate::model::Model;
+
+    fn num(v: f64, p: usize) -> String {
+        let mut s = String::new();
+        number(v, p, &mut s);
+        s
+    }
+
+    #[test]
+    fn compact_numbers() {
+        assert_eq!(num(1.5, 3), "1.5");
+        assert_eq!(num(2.0, 3), "2");
+        assert_eq!(num(-0.0001, 3), "0");
+        assert_eq!(num(12.34567, 3), "12.346");
+        assert_eq!(num(12.34567, 0), "12");
+        assert_eq!(num(f64::NAN, 3), "0");
+        assert_eq!(xml_escape("a\"<b>&'"), "a&quot;&lt;b&gt;&amp;&apos;");
+    }
+
+    #[test]
+    fn single_pixel_is_its_square() {
+        let mask = Mask::from_ascii("...\n.#.\n...");
+        let d = decompose(
+            trace(&mask, Convention::Default),
+            Model::Line,
+            OutlierRule::NotInPiece,
+        );
+        let out = svg_document(&d, 3, 3, &SvgOptions::default());
+        assert!(
+            out.svg.contains("d=\"M2 1L1 1L1 2L2 2L2 1Z\""),
+            "{}",
+            out.svg
+        );
+        assert_eq!(fidelity(&out.svg, &mask).unwrap().differing, 0);
+    }
+
+    #[test]
+    fn holes_and_shapes() {
+        let mask = Mask::from_ascii(
+            "..........
+             .########.
+             .##....##.
+             .#..##..#.
+             .##....##.
+             .########.
+             ..........",
+        );
+        for model in [Model::Line, Model::Circle, Model::Conic] {
+            let d = decompose(
+                trace(&mask, Convention::Default),
+                model,
+                OutlierRule::NotInPiece,
+            );
+            let out = svg_document(&d, mask.width(), mask.height(), &SvgOptions::default());
+            assert_eq!((out.commands.move_to, out.commands.close), (3, 3));
+            let r = fidelity(&out.svg, &mask).unwrap();
+            assert_eq!(r.differing, 0, "{model}: {r:?}\n{}", out.svg);
+        }
+    }
+
+    #[test]
+    fn bad_pieces_do_not_panic() {
+        let mask = Mask::from_ascii("##\n##");
+        let mut d = decompose(
+            trace(&mask, Convention::Default),
+            Model::Line,
+            OutlierRule::NotInPiece,
+        );
+        let basis = d.model.basis();
+        for p in d.pieces[0].iter_mut() {
+            p.last += 7;
+        }
+        let cp = contour_path(&d.contours[0], &d.pieces[0], &basis, 0.05);
+        assert_eq!(cp.fallbacks.invalid_pieces, 1);
+        let svg = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"2\" height=\"2\"><path d=\"{}\"/></svg>",
+            cp.to_bez_path().to_svg()
+        );
+        assert_eq!(fidelity(&svg, &mask).unwrap().differing, 0);
+        let empty = Contour {
+            points: Vec::new(),
+            hole: false,
+            closed: true,
+        };
+        assert!(contour_path(&empty, &[], &basis, 0.05).commands.is_empty());
+        let out = svg_document(
+            &d,
+            2,
+            2,
+            &SvgOptions {
+                tolerance: f64::NAN,
+                ..SvgOptions::default()
+            },
+        );
+        assert!(out.svg.ends_with("</svg>\n"));
     }
 }
