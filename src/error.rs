@@ -71,5 +71,18 @@ pub enum Error {
         path: PathBuf,
         /// The encoder's reason.
         source: image::ImageError,
+    /// An SVG document could not be parsed (fidelity check).
+    #[error("cannot parse SVG: {source}")]
+    SvgParse {
+        /// usvg's reason.
+        source: usvg::Error,
+    },
+    /// No raster of this size can be made (zero or too large).
+    #[error("cannot rasterize at {width}x{height} pixels")]
+    Raster {
+        /// Width in pixels.
+        width: u32,
+        /// Height in pixels.
+        height: u32,
     },
 }

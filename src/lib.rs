@@ -9,6 +9,7 @@ mod curve;
 mod decompose;
 mod error;
 mod export;
+mod fidelity;
 mod level;
 mod model;
 mod output;
@@ -29,6 +30,13 @@ pub use decompose::{
 pub use error::Error;
 pub use export::json::{decomposition_json, JsonHeader};
 pub use export::picture::{decomposition_picture, default_scale};
+pub use export::svg::{
+    contour_path, svg_document, CommandCounts, ContourPath, FallbackCounts, JoinCounts, SvgOptions,
+    SvgOutput, JUNCTION_MAX_DISTANCE,
+};
+pub use fidelity::{
+    compare, diff_image, fidelity, rasterize_svg, FidelityReport, FLATTEN_TOLERANCE,
+};
 pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind, CurveKind};
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use output::{png_bytes, write_atomic};

@@ -1,0 +1,365 @@
+//! SVG export and fidelity round trip on the sample images.
+//!
+//! The fidelity bounds are the figures measured when the exporter was written (so they can
+//! only get better); a failing comparison writes `expected`, `actual` and `diff` PNGs to
+//! `target/fidelity-failures/`.
+
+use kurbo::{Arc, Point};
+use layertrace::{
+    compare, contour_path, decompose, diff_image, load_path, rasterize_svg, svg_document, trace,
+    Contour, Convention, Decomposition, LoadOptions, Mask, Model, OutlierRule, PathCommand,
+    SvgOptions,
+};
+use std::path::{Path, PathBuf};
+
+fn sample(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("samples")
+        .join(name)
+}
+
+fn load(name: &str) -> Mask {
+    load_path(&sample(name), &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
+        .mask
+}
+
+fn decomposition(mask: &Mask, model: Model) -> Decomposition {
+    decompose(
+        trace(mask, Convention::Default),
+        model,
+        OutlierRule::NotInPiece,
+    )
+}
+
+fn json(name: &str) -> serde_json::Value {
+    let text = std::fs::read_to_string(sample(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// Writes expected/actual/diff PNGs and returns where.
+fn save_failure(tag: &str, expected: &Mask, actual: &Mask) -> String {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/fidelity-failures");
+    let _ = std::fs::create_dir_all(&dir);
+    let img = |m: &Mask| {
+        image::GrayImage::from_fn(m.width(), m.height(), |x, y| {
+            image::Luma([if m.get(i64::from(x), i64::from(y)) {
+                0
+            } else {
+                255
+            }])
+        })
+    };
+    let _ = img(expected).save(dir.join(format!("{tag}_expected.png")));
+    let _ = img(actual).save(dir.join(format!("{tag}_actual.png")));
+    let _ = diff_image(expected, actual).save(dir.join(format!("{tag}_diff.png")));
+    format!(
+        "{}/{tag}_{{expected,actual,diff}}.png (diff: red missing, blue extra)",
+        dir.display()
+    )
+}
+
+/// The arcs of the contour whose pixels surround `centre`, as kurbo arcs, and its number of
+/// pieces.
+fn arcs_around(d: &Decomposition, centre: Point, radius: f64) -> (Vec<Arc>, usize) {
+    let basis = d.model.basis();
+    let (k, contour): (usize, &Contour) = d
+        .contours
+        .iter()
+        .enumerate()
+        .find(|(_, c)| {
+            !c.hole
+                && c.points.iter().all(|p| {
+                    let q = Point::new(f64::from(p.x) + 0.5, f64::from(p.y) + 0.5);
+                    (q - centre).hypot() <= radius + 2.0
+                })
+        })
+        .expect("a contour around the shape");
+    let path = contour_path(contour, &d.pieces[k], &basis, 0.05);
+    let mut pen = path.start;
+    let mut arcs = Vec::new();
+    for c in &path.commands {
+        if let PathCommand::Arc(a) = c {
+            let a = kurbo::SvgArc { from: pen, ..*a };
+            arcs.extend(Arc::from_svg_arc(&a));
+        }
+        pen = c.end();
+    }
+    (arcs, d.pieces[k].len())
+}
+
+/// Distance from `p` to the ellipse (centre, semi-axes `a ≥ b`, angle `theta`), by sampling.
+fn ellipse_distance(p: Point, centre: Point, a: f64, b: f64, theta: f64) -> f64 {
+    let (s, c) = theta.sin_cos();
+    (0..3600)
+        .map(|k| {
+            let t = f64::from(k) * std::f64::consts::TAU / 3600.0;
+            let (u, v) = (a * t.cos(), b * t.sin());
+            (Point::new(centre.x + u * c - v * s, centre.y + u * s + v * c) - p).hypot()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Every arc of every disc lies within 0.75 px of the true circle; discs decomposed into a
+/// single piece give arcs whose centre and radius are within 0.5 px of the truth, larger
+/// ones (several pieces, each a local fit) within 8 % of the radius on average (weighted by
+/// the arcs' angles).
+#[test]
+fn disc_arcs_match_the_true_circle() {
+    let mask = load("syn_discs_r3_to_r200.png");
+    let d = decomposition(&mask, Model::Circle);
+    let spec = json("syn_discs_r3_to_r200.json");
+    let mut single = 0;
+    for op in spec["ops"].as_array().expect("ops") {
+        let r = op["r"].as_f64().expect("r");
+        let centre = Point::new(
+            op["cx"].as_f64().expect("cx"),
+            op["cy"].as_f64().expect("cy"),
+        );
+        let (arcs, pieces) = arcs_around(&d, centre, r);
+        assert!(!arcs.is_empty(), "disc r={r}: no arc");
+        let (mut w, mut dr, mut dc) = (0.0, 0.0, 0.0);
+        for a in &arcs {
+            for k in 0..=8 {
+                let t = a.start_angle + a.sweep_angle * f64::from(k) / 8.0;
+                let p = a.center + kurbo::Vec2::from_angle(t) * a.radii.x;
+                let e = ((p - centre).hypot() - r).abs();
+                assert!(
+                    e <= 0.75,
+                    "disc r={r}: arc point {p:?} is {e} px off the circle"
+                );
+            }
+            let (ec, er) = ((a.center - centre).hypot(), (a.radii.x - r).abs());
+            if pieces == 1 {
+                assert!(
+                    ec <= 0.5 && er <= 0.5,
+                    "disc r={r}: one piece, arc centre {:?} radius {}",
+                    a.center,
+                    a.radii.x
+                );
+            }
+            w += a.sweep_angle.abs();
+            dr += a.sweep_angle.abs() * er;
+            dc += a.sweep_angle.abs() * ec;
+        }
+        single += usize::from(pieces == 1);
+        assert!(
+            dr / w <= 0.08 * r && dc / w <= 0.08 * r,
+            "disc r={r}: mean radius error {}, centre error {}",
+            dr / w,
+            dc / w
+        );
+    }
+    assert!(single >= 4, "only {single} discs in one piece");
+}
+
+/// A rotated ellipse small enough to be one conic piece gives elliptic arcs with the true
+/// axes and angle; on the sample, every elliptic arc lies within 1.25 px of its ellipse (measured 1.07; the
+/// border passes between inlier and background centres, as the true curve does).
+#[test]
+fn rotated_ellipse_arcs_match_the_true_ellipse() {
+    let (cx, cy, a, b, theta) = (20.3, 18.6, 9.0, 5.0, 30f64.to_radians());
+    let (s, c) = theta.sin_cos();
+    let mask = Mask::from_fn(42, 38, |x, y| {
+        let (dx, dy) = (f64::from(x) + 0.5 - cx, f64::from(y) + 0.5 - cy);
+        let (u, v) = (dx * c + dy * s, -dx * s + dy * c);
+        (u / a).powi(2) + (v / b).powi(2) <= 1.0
+    });
+    let d = decomposition(&mask, Model::Conic);
+    let (arcs, _) = arcs_around(&d, Point::new(cx, cy), a);
+    assert!(!arcs.is_empty());
+    for arc in &arcs {
+        let (major, minor, angle) = if arc.radii.x >= arc.radii.y {
+            (arc.radii.x, arc.radii.y, arc.x_rotation)
+        } else {
+            (
+                arc.radii.y,
+                arc.radii.x,
+                arc.x_rotation + std::f64::consts::FRAC_PI_2,
+            )
+        };
+        let mut dtheta = (angle - theta).rem_euclid(std::f64::consts::PI);
+        dtheta = dtheta.min(std::f64::consts::PI - dtheta);
+        assert!(
+            (major - a).abs() <= 0.5
+                && (minor - b).abs() <= 0.5
+                && dtheta <= 3f64.to_radians()
+                && (arc.center - Point::new(cx, cy)).hypot() <= 0.5,
+            "arc centre {:?} axes {major} {minor} angle {angle}",
+            arc.center
+        );
+    }
+
+    let mask = load("syn_ellipses_rotated.png");
+    let d = decomposition(&mask, Model::Conic);
+    let spec = json("syn_ellipses_rotated.json");
+    let mut checked = 0;
+    for op in spec["ops"].as_array().expect("ops") {
+        let (a, b) = (op["a"].as_f64().expect("a"), op["b"].as_f64().expect("b"));
+        let theta = op["theta_deg"].as_f64().expect("theta").to_radians();
+        let centre = Point::new(
+            op["cx"].as_f64().expect("cx"),
+            op["cy"].as_f64().expect("cy"),
+        );
+        let (arcs, _) = arcs_around(&d, centre, a);
+        for arc in &arcs {
+            for k in 0..=4 {
+                let t = arc.start_angle + arc.sweep_angle * f64::from(k) / 4.0;
+                let (st, ct) = t.sin_cos();
+                let (sr, cr) = arc.x_rotation.sin_cos();
+                let (u, v) = (arc.radii.x * ct, arc.radii.y * st);
+                let p = Point::new(
+                    arc.center.x + u * cr - v * sr,
+                    arc.center.y + u * sr + v * cr,
+                );
+                let e = ellipse_distance(p, centre, a, b, theta);
+                assert!(
+                    e <= 1.25,
+                    "ellipse a={a} b={b}: arc point {p:?} is {e} px off"
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 10, "only {checked} elliptic arcs checked");
+}
+
+#[test]
+fn svg_parses_and_is_well_formed() {
+    let mask = load("glyph_g_liberationserif_cap120.png");
+    for model in [Model::Line, Model::Circle, Model::Conic] {
+        let out = svg_document(
+            &decomposition(&mask, model),
+            mask.width(),
+            mask.height(),
+            &SvgOptions::default(),
+        );
+        let tree = usvg::Tree::from_str(&out.svg, &usvg::Options::default()).expect("usvg parses");
+        assert_eq!((tree.size().width(), tree.size().height()), (110.0, 163.0));
+        assert!(out.svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"110\" height=\"163\" viewBox=\"0 0 110 163\">"));
+        assert_eq!(out.svg.matches("<path").count(), 1);
+        assert_eq!(out.commands.move_to, 3);
+        assert_eq!(out.commands.close, 3);
+        // Compact numbers: no trailing zeros, at most 3 decimals.
+        let d = out
+            .svg
+            .split(" d=\"")
+            .nth(1)
+            .expect("d")
+            .split('"')
+            .next()
+            .expect("d");
+        for num in d
+            .split(|c: char| c.is_ascii_alphabetic() || c == ' ')
+            .filter(|s| !s.is_empty())
+        {
+            assert!(num.parse::<f64>().is_ok(), "{num}");
+            if let Some((_, frac)) = num.split_once('.') {
+                assert!(frac.len() <= 3 && !frac.ends_with('0'), "{num}");
+            }
+        }
+    }
+}
+
+/// The crack outline (every piece dropped) reproduces every sample exactly: the fallback
+/// is exact and the rasterizer samples pixel centres.
+#[test]
+fn crack_outlines_are_exact() {
+    for name in [
+        "syn_tiny_blobs.png",
+        "glyph_at_dejavusans_cap40.png",
+        "lineart_cat_symbola_h300.png",
+    ] {
+        let mask = load(name);
+        let mut d = decomposition(&mask, Model::Line);
+        d.pieces.iter_mut().for_each(Vec::clear);
+        let out = svg_document(&d, mask.width(), mask.height(), &SvgOptions::default());
+        let actual = rasterize_svg(&out.svg, mask.width(), mask.height()).expect("rasterizes");
+        let r = compare(&mask, &actual);
+        if r.differing != 0 {
+            let at = save_failure(&format!("cracks_{name}"), &mask, &actual);
+            panic!("{name}: {} missing, {} extra; see {at}", r.missing, r.extra);
+        }
+        assert_eq!(out.commands.arc + out.commands.quad + out.commands.cubic, 0);
+    }
+}
+
+/// Largest number of differing pixels measured for each sample and model.
+const BOUNDS: &[(&str, Model, u64)] = &[
+    ("digits_liberationsans_cap40", Model::Line, 17),
+    ("digits_liberationsans_cap40", Model::Circle, 24),
+    ("digits_liberationsans_cap40", Model::Conic, 28),
+    ("glyph_S_dejavusans_cap120", Model::Line, 5),
+    ("glyph_S_dejavusans_cap120", Model::Circle, 4),
+    ("glyph_S_dejavusans_cap120", Model::Conic, 7),
+    ("glyph_at_dejavusans_cap40", Model::Line, 3),
+    ("glyph_at_dejavusans_cap40", Model::Circle, 9),
+    ("glyph_at_dejavusans_cap40", Model::Conic, 8),
+    ("glyph_g_liberationserif_cap120", Model::Line, 7),
+    ("glyph_g_liberationserif_cap120", Model::Circle, 11),
+    ("glyph_g_liberationserif_cap120", Model::Conic, 16),
+    ("lineart_cat_symbola_h300", Model::Line, 53),
+    ("lineart_cat_symbola_h300", Model::Circle, 65),
+    ("lineart_cat_symbola_h300", Model::Conic, 76),
+    ("sil_horse_skimage", Model::Line, 37),
+    ("sil_horse_skimage", Model::Circle, 33),
+    ("sil_horse_skimage", Model::Conic, 40),
+    ("suits_black_dejavusans_cap120", Model::Line, 19),
+    ("suits_black_dejavusans_cap120", Model::Circle, 17),
+    ("suits_black_dejavusans_cap120", Model::Conic, 30),
+    ("syn_border_touching", Model::Line, 6),
+    ("syn_border_touching", Model::Circle, 3),
+    ("syn_border_touching", Model::Conic, 3),
+    ("syn_digital_circle_1px", Model::Line, 25),
+    ("syn_digital_circle_1px", Model::Circle, 13),
+    ("syn_digital_circle_1px", Model::Conic, 30),
+    ("syn_discs_r3_to_r200", Model::Line, 122),
+    ("syn_discs_r3_to_r200", Model::Circle, 77),
+    ("syn_discs_r3_to_r200", Model::Conic, 108),
+    ("syn_ellipses_rotated", Model::Line, 68),
+    ("syn_ellipses_rotated", Model::Circle, 45),
+    ("syn_ellipses_rotated", Model::Conic, 51),
+    ("syn_fig15_ellipse_two_holes", Model::Line, 47),
+    ("syn_fig15_ellipse_two_holes", Model::Circle, 27),
+    ("syn_fig15_ellipse_two_holes", Model::Conic, 40),
+    ("syn_polygons_sharp", Model::Line, 29),
+    ("syn_polygons_sharp", Model::Circle, 23),
+    ("syn_polygons_sharp", Model::Conic, 98),
+    ("syn_tiny_blobs", Model::Line, 0),
+    ("syn_tiny_blobs", Model::Circle, 0),
+    ("syn_tiny_blobs", Model::Conic, 0),
+    ("word_Layers_dejavusans-bold_cap40", Model::Line, 10),
+    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 6),
+    ("word_Layers_dejavusans-bold_cap40", Model::Conic, 14),
+];
+
+#[test]
+fn sample_fidelity_does_not_regress() {
+    let mut failures = Vec::new();
+    for name in BOUNDS
+        .iter()
+        .map(|b| b.0)
+        .collect::<std::collections::BTreeSet<_>>()
+    {
+        let mask = load(&format!("{name}.png"));
+        for &(_, model, bound) in BOUNDS.iter().filter(|b| b.0 == name) {
+            let out = svg_document(
+                &decomposition(&mask, model),
+                mask.width(),
+                mask.height(),
+                &SvgOptions::default(),
+            );
+            let actual = rasterize_svg(&out.svg, mask.width(), mask.height()).expect("rasterizes");
+            let r = compare(&mask, &actual);
+            assert_eq!(r.foreground, mask.count_foreground());
+            if r.differing > bound {
+                let at = save_failure(&format!("{name}_{model}"), &mask, &actual);
+                failures.push(format!(
+                    "{name} {model}: {} differing ({} missing, {} extra) > {bound}; see {at}",
+                    r.differing, r.missing, r.extra
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
