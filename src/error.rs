@@ -71,6 +71,7 @@ pub enum Error {
         path: PathBuf,
         /// The encoder's reason.
         source: image::ImageError,
+    },
     /// An SVG document could not be parsed (fidelity check).
     #[error("cannot parse SVG: {source}")]
     SvgParse {
