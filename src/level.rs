@@ -15,8 +15,10 @@
 //! the pixels along the piece.
 
 use crate::curve::{ConicKind, Polynomial, MAX_DEGREE};
+use crate::decompose::{piece_outliers, OutlierRule, Piece};
 use crate::model::Basis;
-use crate::recognize::Certificate;
+use crate::pixel::Pixel;
+use crate::recognize::{max_margin_direction, Certificate};
 use kurbo::Point;
 
 /// The type of a piece's level curves.
@@ -70,14 +72,26 @@ pub fn boundary_level(c: &Certificate) -> f64 {
 /// Returns `None` if the basis is not polynomial in two variables, its degree exceeds
 /// [`MAX_DEGREE`], or every coefficient is zero.
 pub fn level_polynomial(basis: &dyn Basis, c: &Certificate, level: f64) -> Option<Polynomial> {
-    if basis.point_dim() != 2 || c.origin.len() != 2 {
+    let a: Vec<f64> = c.coefficients.iter().map(|&v| v as f64).collect();
+    polynomial_of(basis, &c.origin, &a, level)
+}
+
+/// The polynomial `Σ a_k f_k(p − origin) − level` in SVG coordinates, coefficients divided
+/// by their largest magnitude. Returns `None` as [`level_polynomial`] does.
+pub fn polynomial_of(
+    basis: &dyn Basis,
+    origin: &[i64],
+    a: &[f64],
+    level: f64,
+) -> Option<Polynomial> {
+    if basis.point_dim() != 2 || origin.len() != 2 || a.len() != basis.dim() {
         return None;
     }
     let functions = basis.polynomials()?;
     let mut monomials = Vec::new();
     let mut coefficients = Vec::new();
-    for (f, &a) in functions.iter().zip(&c.coefficients) {
-        if a == 0 {
+    for (f, &a) in functions.iter().zip(a) {
+        if a == 0.0 || !a.is_finite() {
             continue;
         }
         for (k, e) in f {
@@ -85,7 +99,7 @@ pub fn level_polynomial(basis: &dyn Basis, c: &Certificate, level: f64) -> Optio
                 return None;
             }
             monomials.push((e[0], e[1]));
-            coefficients.push(a as f64 * *k as f64);
+            coefficients.push(a * *k as f64);
         }
     }
     let scale = coefficients.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -93,8 +107,37 @@ pub fn level_polynomial(basis: &dyn Basis, c: &Certificate, level: f64) -> Optio
         return None;
     }
     coefficients.iter_mut().for_each(|v| *v /= scale);
-    let origin = Point::new(c.origin[0] as f64 + 0.5, c.origin[1] as f64 + 0.5);
+    let origin = Point::new(origin[0] as f64 + 0.5, origin[1] as f64 + 0.5);
     Polynomial::from_local(&monomials, &coefficients, origin, level / scale)
+}
+
+/// The border curve of a piece for drawing: the level curve, half-way between the two
+/// sides, of the direction of largest margin separating the piece's pixels and LEFT
+/// outliers (the foreground side) from its RIGHT outliers (the background beside it). A
+/// certificate separates them too, but with whatever margin its rounding left — often a
+/// thousandth of a pixel — while pixel-exact rendering wants the curve well clear of every
+/// pixel centre. Falls back to the certificate's [`boundary_level`] curve when no
+/// separation is found (e.g. no RIGHT outlier).
+pub fn border_polynomial(
+    basis: &dyn Basis,
+    points: &[Pixel],
+    piece: &Piece,
+    rule: OutlierRule,
+) -> Option<Polynomial> {
+    let (right, left) = piece_outliers(points, piece.first, piece.last, rule);
+    let xy = |p: &Pixel| vec![i64::from(p.x), i64::from(p.y)];
+    let mut low: Vec<Vec<i64>> = points[piece.first..=piece.last].iter().map(xy).collect();
+    low.extend(left.iter().map(xy));
+    let high: Vec<Vec<i64>> = right.iter().map(xy).collect();
+    let origin = &piece.certificate.origin;
+    match max_margin_direction(basis, origin, &low, &high, true) {
+        Some((a, level)) => polynomial_of(basis, origin, &a, level),
+        None => level_polynomial(
+            basis,
+            &piece.certificate,
+            boundary_level(&piece.certificate),
+        ),
+    }
 }
 
 /// The type of the level curve `poly = 0`.

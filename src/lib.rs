@@ -37,8 +37,13 @@ pub use export::svg::{
 pub use fidelity::{
     compare, diff_image, fidelity, rasterize_svg, FidelityReport, FLATTEN_TOLERANCE,
 };
-pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind, CurveKind};
+pub use level::{
+    border_polynomial, boundary_level, curve_kind, level_polynomial, piece_kind, polynomial_of,
+    CurveKind,
+};
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use output::{png_bytes, write_atomic};
 pub use pixel::Pixel;
-pub use recognize::{recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness};
+pub use recognize::{
+    max_margin_direction, recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness,
+};

@@ -102,8 +102,8 @@ fn ellipse_distance(p: Point, centre: Point, a: f64, b: f64, theta: f64) -> f64 
 
 /// Every arc of every disc lies within 0.75 px of the true circle; discs decomposed into a
 /// single piece give arcs whose centre and radius are within 0.5 px of the truth, larger
-/// ones (several pieces, each a local fit) within 8 % of the radius on average (weighted by
-/// the arcs' angles).
+/// ones (several pieces, each a local fit) within 8 % of the radius (at least 0.5 px) on
+/// average (weighted by the arcs' angles).
 #[test]
 fn disc_arcs_match_the_true_circle() {
     let mask = load("syn_discs_r3_to_r200.png");
@@ -144,7 +144,7 @@ fn disc_arcs_match_the_true_circle() {
         }
         single += usize::from(pieces == 1);
         assert!(
-            dr / w <= 0.08 * r && dc / w <= 0.08 * r,
+            dr / w <= (0.08 * r).max(0.5) && dc / w <= (0.08 * r).max(0.5),
             "disc r={r}: mean radius error {}, centre error {}",
             dr / w,
             dc / w
@@ -286,51 +286,54 @@ fn crack_outlines_are_exact() {
 
 /// Largest number of differing pixels measured for each sample and model.
 const BOUNDS: &[(&str, Model, u64)] = &[
-    ("digits_liberationsans_cap40", Model::Line, 17),
-    ("digits_liberationsans_cap40", Model::Circle, 24),
-    ("digits_liberationsans_cap40", Model::Conic, 28),
-    ("glyph_S_dejavusans_cap120", Model::Line, 5),
-    ("glyph_S_dejavusans_cap120", Model::Circle, 4),
+    ("digits_liberationsans_cap40", Model::Line, 3),
+    ("digits_liberationsans_cap40", Model::Circle, 18),
+    ("digits_liberationsans_cap40", Model::Conic, 22),
+    ("glyph_S_dejavusans_cap120", Model::Line, 0),
+    ("glyph_S_dejavusans_cap120", Model::Circle, 3),
     ("glyph_S_dejavusans_cap120", Model::Conic, 7),
-    ("glyph_at_dejavusans_cap40", Model::Line, 3),
-    ("glyph_at_dejavusans_cap40", Model::Circle, 9),
-    ("glyph_at_dejavusans_cap40", Model::Conic, 8),
-    ("glyph_g_liberationserif_cap120", Model::Line, 7),
-    ("glyph_g_liberationserif_cap120", Model::Circle, 11),
-    ("glyph_g_liberationserif_cap120", Model::Conic, 16),
-    ("lineart_cat_symbola_h300", Model::Line, 53),
-    ("lineart_cat_symbola_h300", Model::Circle, 65),
-    ("lineart_cat_symbola_h300", Model::Conic, 76),
-    ("sil_horse_skimage", Model::Line, 37),
-    ("sil_horse_skimage", Model::Circle, 33),
-    ("sil_horse_skimage", Model::Conic, 40),
-    ("suits_black_dejavusans_cap120", Model::Line, 19),
-    ("suits_black_dejavusans_cap120", Model::Circle, 17),
-    ("suits_black_dejavusans_cap120", Model::Conic, 30),
-    ("syn_border_touching", Model::Line, 6),
+    ("glyph_at_dejavusans_cap40", Model::Line, 0),
+    ("glyph_at_dejavusans_cap40", Model::Circle, 4),
+    ("glyph_at_dejavusans_cap40", Model::Conic, 7),
+    ("glyph_g_liberationserif_cap120", Model::Line, 1),
+    ("glyph_g_liberationserif_cap120", Model::Circle, 8),
+    ("glyph_g_liberationserif_cap120", Model::Conic, 11),
+    ("lineart_cat_symbola_h300", Model::Line, 15),
+    ("lineart_cat_symbola_h300", Model::Circle, 40),
+    ("lineart_cat_symbola_h300", Model::Conic, 62),
+    ("sil_horse_skimage", Model::Line, 10),
+    ("sil_horse_skimage", Model::Circle, 26),
+    ("sil_horse_skimage", Model::Conic, 25),
+    ("suits_black_dejavusans_cap120", Model::Line, 9),
+    ("suits_black_dejavusans_cap120", Model::Circle, 13),
+    ("suits_black_dejavusans_cap120", Model::Conic, 21),
+    ("syn_big3000_many_shapes", Model::Line, 188),
+    ("syn_big3000_many_shapes", Model::Circle, 557),
+    ("syn_big3000_many_shapes", Model::Conic, 635),
+    ("syn_border_touching", Model::Line, 3),
     ("syn_border_touching", Model::Circle, 3),
     ("syn_border_touching", Model::Conic, 3),
-    ("syn_digital_circle_1px", Model::Line, 25),
+    ("syn_digital_circle_1px", Model::Line, 0),
     ("syn_digital_circle_1px", Model::Circle, 13),
     ("syn_digital_circle_1px", Model::Conic, 30),
-    ("syn_discs_r3_to_r200", Model::Line, 122),
-    ("syn_discs_r3_to_r200", Model::Circle, 77),
-    ("syn_discs_r3_to_r200", Model::Conic, 108),
-    ("syn_ellipses_rotated", Model::Line, 68),
-    ("syn_ellipses_rotated", Model::Circle, 45),
-    ("syn_ellipses_rotated", Model::Conic, 51),
-    ("syn_fig15_ellipse_two_holes", Model::Line, 47),
+    ("syn_discs_r3_to_r200", Model::Line, 18),
+    ("syn_discs_r3_to_r200", Model::Circle, 69),
+    ("syn_discs_r3_to_r200", Model::Conic, 105),
+    ("syn_ellipses_rotated", Model::Line, 8),
+    ("syn_ellipses_rotated", Model::Circle, 41),
+    ("syn_ellipses_rotated", Model::Conic, 40),
+    ("syn_fig15_ellipse_two_holes", Model::Line, 0),
     ("syn_fig15_ellipse_two_holes", Model::Circle, 27),
-    ("syn_fig15_ellipse_two_holes", Model::Conic, 40),
-    ("syn_polygons_sharp", Model::Line, 29),
-    ("syn_polygons_sharp", Model::Circle, 23),
+    ("syn_fig15_ellipse_two_holes", Model::Conic, 36),
+    ("syn_polygons_sharp", Model::Line, 28),
+    ("syn_polygons_sharp", Model::Circle, 22),
     ("syn_polygons_sharp", Model::Conic, 98),
     ("syn_tiny_blobs", Model::Line, 0),
     ("syn_tiny_blobs", Model::Circle, 0),
     ("syn_tiny_blobs", Model::Conic, 0),
-    ("word_Layers_dejavusans-bold_cap40", Model::Line, 10),
-    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 6),
-    ("word_Layers_dejavusans-bold_cap40", Model::Conic, 14),
+    ("word_Layers_dejavusans-bold_cap40", Model::Line, 3),
+    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 4),
+    ("word_Layers_dejavusans-bold_cap40", Model::Conic, 7),
 ];
 
 #[test]

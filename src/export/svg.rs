@@ -52,8 +52,9 @@
 
 use crate::contour::Contour;
 use crate::curve::{intersect_near, level_curve_path, project, PathCommand, Polynomial};
+use crate::decompose::OutlierRule;
 use crate::decompose::{neighbour_sides, Decomposition, Piece};
-use crate::level::{boundary_level, level_polynomial};
+use crate::level::border_polynomial;
 use crate::model::Basis;
 use crate::pixel::Pixel;
 use kurbo::{BezPath, PathEl, Point};
@@ -516,7 +517,7 @@ fn build(
                 out.fallbacks.zero_certificate += 1;
                 return None;
             }
-            let poly = level_polynomial(basis, &p.certificate, boundary_level(&p.certificate));
+            let poly = border_polynomial(basis, points, p, OutlierRule::NotInPiece);
             if poly.is_none() {
                 out.fallbacks.no_polynomial += 1;
             }

@@ -595,6 +595,89 @@ impl Recognizer {
     }
 }
 
+/// The separating direction of largest margin between `low` and `high` point sets (relative
+/// to `origin`), and the level half-way between them: `a·F(p) < level` on `low`,
+/// `> level` on `high`, in `f64`. Not a certificate: a drawing aid for exporters, which want
+/// the border curve as far as possible from the pixel centres on either side.
+///
+/// With `scaled`, the margin is measured after scaling each lifted coordinate to magnitude
+/// about one (as the recognizer does); otherwise in the lifted coordinates themselves (for
+/// the line basis, the Euclidean distance in the image).
+///
+/// Returns `None` if either set is empty, a lifting overflows, or no separation is found.
+pub fn max_margin_direction(
+    basis: &dyn Basis,
+    origin: &[i64],
+    low: &[Vec<i64>],
+    high: &[Vec<i64>],
+    scaled: bool,
+) -> Option<(Vec<f64>, f64)> {
+    let (pd, n) = (basis.point_dim(), basis.dim());
+    if low.is_empty() || high.is_empty() || origin.len() != pd {
+        return None;
+    }
+    let mut max_abs = vec![0i64; n];
+    let mut fill = |pts: &[Vec<i64>]| -> Option<LiftedSet> {
+        let mut set = LiftedSet::new(pd, n);
+        let mut f = vec![0; n];
+        for p in pts {
+            let rel: Vec<i64> = p
+                .iter()
+                .zip(origin)
+                .map(|(a, b)| a.checked_sub(*b))
+                .collect::<Option<_>>()?;
+            basis.lift(&rel, &mut f)?;
+            for (m, v) in max_abs.iter_mut().zip(&f) {
+                *m = (*m).max(v.saturating_abs());
+            }
+            set.push(&rel, &f);
+        }
+        Some(set)
+    };
+    let low_set = fill(low)?;
+    let high_set = fill(high)?;
+    let empty = LiftedSet::new(pd, n);
+    let scale: Vec<f64> = max_abs
+        .iter()
+        .map(|&m| {
+            if scaled && m > 0 {
+                (-(m as f64).log2().ceil()).exp2()
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let sets = Sets {
+        inliers: &low_set,
+        upper: &high_set,
+        lower: &empty,
+    };
+    let mut support = FloatSupport {
+        sets,
+        scale: &scale,
+        y: Vec::with_capacity(n),
+    };
+    let mut simplex = Simplex::default();
+    let params = GjkParams {
+        first_separation: false,
+        ..FLOAT_PARAMS
+    };
+    let GjkOutcome::Separated { direction, .. } = gjk(&mut support, &mut simplex, &params).0 else {
+        return None;
+    };
+    let y: Vec<f64> = direction.iter().zip(&scale).map(|(a, s)| a * s).collect();
+    let value = |row: &[f64]| row.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>();
+    let top = low_set
+        .float_rows()
+        .map(value)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let bottom = high_set
+        .float_rows()
+        .map(value)
+        .fold(f64::INFINITY, f64::min);
+    (top < bottom).then(|| (y, (top + bottom) / 2.0))
+}
+
 /// Decides one recognition problem from scratch (convenience for tests and one-off use).
 pub fn recognize(
     basis: Arc<dyn Basis>,
