@@ -2,9 +2,10 @@
 
 use clap::Parser;
 use layertrace::{
-    decompose, decomposition_json, decomposition_picture, default_scale, load_path, piece_kind,
-    png_bytes, trace, write_atomic, Basis, Compat, Convention, CurveKind, Error, JsonHeader,
-    LoadOptions, Model, OutlierRule, Threshold,
+    compare, decompose, decomposition_json, decomposition_picture, default_scale, diff_image,
+    load_path, piece_kind, png_bytes, rasterize_svg, svg_document, trace, write_atomic, Basis,
+    Compat, Convention, CurveKind, Error, JsonHeader, LoadOptions, Model, OutlierRule, SvgOptions,
+    Threshold,
 };
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -13,6 +14,8 @@ use std::time::Instant;
 
 const AFTER_HELP: &str = "\
 Examples:
+  layertrace samples/glyph_g_liberationserif_cap120.png -o g.svg --report
+  layertrace logo.png -o logo.svg --model circle --fill '#1a237e' --precision 2
   layertrace samples/glyph_g_liberationserif_cap120.png --json g.json --decomposition g.png
   layertrace scan.png --model circle --threshold otsu --json -
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
@@ -30,6 +33,34 @@ Exit codes:
 struct Args {
     /// Input image (PNG, BMP, PNM/PBM, TIFF, GIF, JPEG, WebP).
     input: PathBuf,
+
+    /// Write the SVG ('-' for standard output): one path, lines, exact circular and
+    /// elliptic arcs, parabolas as quadratic Béziers, other curves as fitted cubics.
+    #[arg(short, long, value_name = "OUT.svg")]
+    output: Option<PathBuf>,
+
+    /// Rasterize the SVG back (usvg + tiny-skia, no anti-aliasing) and report on standard
+    /// error: differing pixels, IoU, path commands by type, SVG size.
+    #[arg(long)]
+    report: bool,
+
+    /// Write the round-trip differences as PNG: input black on white, missing pixels red,
+    /// extra pixels blue.
+    #[arg(long, value_name = "FILE.png")]
+    diff: Option<PathBuf>,
+
+    /// Fill colour of the SVG path.
+    #[arg(long, value_name = "COLOUR", default_value = "black")]
+    fill: String,
+
+    /// Decimals of the SVG coordinates.
+    #[arg(long, value_name = "N", default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=12))]
+    precision: u8,
+
+    /// Largest distance (pixels) of fitted cubic Béziers to the true curve (hyperbolas,
+    /// degenerate conics, poly:D).
+    #[arg(long, value_name = "PX", default_value_t = 0.05)]
+    tolerance: f64,
 
     /// Write the pieces and their exact equations as JSON ('-' for standard output).
     #[arg(long, value_name = "FILE")]
@@ -55,7 +86,8 @@ struct Args {
     /// Follow the conventions of the paper authors' program instead of layertrace's:
     /// alpha-stripped grey, 4-connected objects, crack-following borders, outliers
     /// whatever their colour. Reproduces the article's segment counts.
-    #[arg(long, value_name = "ipol", value_parser = ["ipol"])]
+    #[arg(long, value_name = "ipol", value_parser = ["ipol"],
+          conflicts_with_all = ["output", "report", "diff"])]
     compat: Option<String>,
 
     /// Enlargement of the decomposition picture [default: about 800 pixels wide].
@@ -156,6 +188,55 @@ fn run(args: &Args) -> Result<(), Error> {
             source,
         })?;
         write_atomic(path, &bytes)?;
+    }
+
+    if args.output.is_some() || args.report || args.diff.is_some() {
+        let opts = SvgOptions {
+            fill: args.fill.clone(),
+            precision: args.precision,
+            tolerance: args.tolerance,
+        };
+        let out = svg_document(&d, mask.width(), mask.height(), &opts);
+        if let Some(path) = &args.output {
+            write_atomic(path, out.svg.as_bytes())?;
+        }
+        if args.report || args.diff.is_some() {
+            let actual = rasterize_svg(&out.svg, mask.width(), mask.height())?;
+            let r = compare(mask, &actual);
+            if let Some(path) = &args.diff {
+                let bytes =
+                    png_bytes(&diff_image(mask, &actual)).map_err(|source| Error::Encode {
+                        path: path.clone(),
+                        source,
+                    })?;
+                write_atomic(path, &bytes)?;
+            }
+            if args.report {
+                let c = out.commands;
+                let pct = if r.foreground > 0 {
+                    100.0 * r.differing as f64 / r.foreground as f64
+                } else {
+                    0.0
+                };
+                eprintln!(
+                    "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}",
+                    r.differing, r.missing, r.extra, pct, r.foreground, r.iou
+                );
+                eprintln!(
+                    "svg: {} bytes, {} commands (M {}, L {}, A {}, Q {}, C {}, Z {}), {} pieces drawn along pixel edges, max fit error {:.3} px",
+                    out.svg.len(),
+                    c.total(),
+                    c.move_to,
+                    c.line,
+                    c.arc,
+                    c.quad,
+                    c.cubic,
+                    c.close,
+                    out.fallbacks,
+                    out.max_fit_error
+                );
+            }
+        }
     }
 
     if !args.quiet {
