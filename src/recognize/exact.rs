@@ -245,8 +245,17 @@ pub(crate) enum ExactDecision {
 pub(crate) fn decide_exactly(sets: &Sets<'_>, warm: &[Tag], max_abs: &[i64]) -> ExactDecision {
     let mut support = ExactSupport { sets: *sets };
     let mut simplex: Simplex<BigRational> = Simplex::default();
-    if let Some(first) = warm.first() {
-        simplex.reset_to(support.vertex(first));
+    // Warm start from the float run's whole simplex (uniform weights, reduced exactly); if
+    // its vertices are affinely dependent in exact arithmetic, from its first vertex.
+    if !warm.is_empty() {
+        for t in warm {
+            simplex.push(support.vertex(t));
+        }
+        let w = BigRational::new(BigInt::from(1), BigInt::from(warm.len()));
+        simplex.weights = vec![w; warm.len()];
+        if simplex.reduce_to_closest_point(0.0).is_err() {
+            simplex.reset_to(support.vertex(&warm[0]));
+        }
     }
     let params = exact_params(max_abs.len());
     match gjk(&mut support, &mut simplex, &params).0 {
