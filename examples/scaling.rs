@@ -34,7 +34,7 @@ fn disc_border(r: f64) -> Vec<Pixel> {
     }
     let mut v: Vec<Pixel> = set.into_iter().collect();
     let angle = |p: &Pixel| -((p.y as f64 + 0.5).atan2(p.x as f64 + 0.5));
-    v.sort_by(|a, b| angle(a).total_cmp(&angle(b)));
+    v.sort_by_cached_key(|p| OrderedAngle(angle(p)));
     v
 }
 
@@ -77,5 +77,23 @@ fn main() {
                 d.stats.exact_fallbacks
             );
         }
+    }
+}
+
+/// An angle ordered by `f64::total_cmp`.
+#[derive(PartialEq)]
+struct OrderedAngle(f64);
+
+impl Eq for OrderedAngle {}
+
+impl PartialOrd for OrderedAngle {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+impl Ord for OrderedAngle {
+    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&o.0)
     }
 }

@@ -560,3 +560,45 @@ fn differential_report() {
         );
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(600))]
+    /// The exact fallback alone (never reached by the random instances above, where the
+    /// float run always proves its answer) agrees with the oracle, and its answers check.
+    #[test]
+    fn exact_fallback_agrees_with_the_oracle(
+        model in prop_oneof![Just(Model::Line), Just(Model::Circle), Just(Model::Conic)],
+        inst in small_instance(2, 5),
+    ) {
+        let (s, up, lo, off) = inst;
+        let (s, up, lo) = (shift(&s, off), shift(&up, off), shift(&lo, off));
+        let basis: Arc<dyn Basis> = Arc::new(model.basis());
+        let mut r = Recognizer::new(basis.clone(), &s[0]).unwrap();
+        s.iter().for_each(|p| r.add_inlier(p));
+        up.iter().for_each(|p| r.add_outlier(p, Side::Upper));
+        lo.iter().for_each(|p| r.add_outlier(p, Side::Lower));
+        let sets = Sets { inliers: &r.inliers, upper: &r.upper, lower: &r.lower };
+        let d = differences(basis.as_ref(), &s[0], &s, &up, &lo);
+        let inside = origin_in_conv_brute(&d);
+        match exact::decide_exactly(&sets, &[], &r.max_abs) {
+            exact::ExactDecision::Described(a, e) => {
+                prop_assert!(!inside, "exact says described, oracle says not");
+                let c = Certificate { origin: s[0].clone(), coefficients: a, lower: e.lower, upper: e.upper, above: e.above, below: e.below };
+                prop_assert!(certificate_holds(basis.as_ref(), &c, &s, &up, &lo));
+            }
+            exact::ExactDecision::NotDescribed(tags, weights) => {
+                prop_assert!(inside, "exact says not described, oracle says described");
+                // The weighted sum of the named differences is zero.
+                let n = basis.dim();
+                let mut sum = vec![BigRational::from_integer(0.into()); n];
+                for (t, w) in tags.iter().zip(&weights) {
+                    for (k, v) in sets.difference(t).into_iter().enumerate() {
+                        sum[k] += w * BigRational::from_integer(v.into());
+                    }
+                }
+                prop_assert!(sum.iter().all(|v| *v == BigRational::from_integer(0.into())));
+            }
+            exact::ExactDecision::Undecided => prop_assert!(false, "undecided"),
+        }
+    }
+}
