@@ -81,6 +81,8 @@ struct Row {
     missing: u64,
     extra: u64,
     median_ms: f64,
+    /// Median CPU time (user + system), when `/proc/PID/schedstat` could be read.
+    cpu_ms: Option<f64>,
     peak_mib: Option<f64>,
 }
 
@@ -417,6 +419,33 @@ fn run(program: &Path, args: &[OsString]) -> Result<(), String> {
     }
 }
 
+/// CPU time (ms, user + system) of the children waited for so far.
+fn children_cpu_ms() -> Option<f64> {
+    use nix::sys::resource::{getrusage, UsageWho};
+    let u = getrusage(UsageWho::RUSAGE_CHILDREN).ok()?;
+    let ms = |t: nix::sys::time::TimeVal| t.tv_sec() as f64 * 1e3 + t.tv_usec() as f64 / 1e3;
+    Some(ms(u.user_time()) + ms(u.system_time()))
+}
+
+/// Wall time (ms) of one run of `program args`, from spawning to its exit, and its CPU time
+/// (ms, user + system, all its threads) by `getrusage(RUSAGE_CHILDREN)` before and after.
+fn timed_run(program: &Path, args: &[OsString]) -> Result<(f64, Option<f64>), String> {
+    let before = children_cpu_ms();
+    let t = Instant::now();
+    let status = Command::new(program)
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .map_err(|e| format!("{}: {e}", program.display()))?;
+    let wall = t.elapsed().as_secs_f64() * 1e3;
+    let cpu = before.zip(children_cpu_ms()).map(|(b, a)| a - b);
+    if !status.success() {
+        return Err(format!("{} exited with {status}", program.display()));
+    }
+    Ok((wall, cpu))
+}
+
 /// Peak resident memory (MiB) of one run of `program args` under `/usr/bin/time`, or
 /// `None` without it.
 fn peak_memory(program: &Path, args: &[OsString], work: &Path) -> Result<Option<f64>, String> {
@@ -473,10 +502,13 @@ fn measure(
     let actual = rasterize_svg(&sized, mask.width(), mask.height()).map_err(|e| e.to_string())?;
     let r = compare(mask, &actual);
     let mut times = Vec::with_capacity(opts.runs);
+    let mut cpu = Vec::with_capacity(opts.runs);
     for _ in 0..opts.runs {
-        let t = Instant::now();
-        run(&config.program, &args)?;
-        times.push(t.elapsed().as_secs_f64() * 1e3);
+        let (wall, c) = timed_run(&config.program, &args)?;
+        times.push(wall);
+        if let Some(c) = c {
+            cpu.push(c);
+        }
     }
     Ok(Row {
         image: image.to_string(),
@@ -486,8 +518,13 @@ fn measure(
         missing: r.missing,
         extra: r.extra,
         median_ms: median(&mut times),
+        cpu_ms: (cpu.len() == times.len()).then(|| median(&mut cpu)),
         peak_mib,
     })
+}
+
+fn ms(t: Option<f64>) -> String {
+    t.map_or_else(|| "n/a".to_string(), |t| format!("{t:.1}"))
 }
 
 fn mib(m: Option<f64>) -> String {
@@ -554,13 +591,13 @@ fn report(
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "| image | tool | curves | lines | SVG bytes | differing px (missing + extra) | median ms | peak MiB |"
+        "| image | tool | curves | lines | SVG bytes | differing px (missing + extra) | median ms | CPU ms | peak MiB |"
     );
-    let _ = writeln!(s, "|---|---|--:|--:|--:|--:|--:|--:|");
+    let _ = writeln!(s, "|---|---|--:|--:|--:|--:|--:|--:|--:|");
     for r in rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} ({} + {}) | {:.1} | {} |",
+            "| {} | {} | {} | {} | {} | {} ({} + {}) | {:.1} | {} | {} |",
             r.image,
             r.tool,
             r.counts.curves,
@@ -570,6 +607,7 @@ fn report(
             r.missing,
             r.extra,
             r.median_ms,
+            ms(r.cpu_ms),
             mib(r.peak_mib)
         );
     }
@@ -580,9 +618,9 @@ fn report(
     );
     let _ = writeln!(
         s,
-        "| tool | images | curves | lines | SVG bytes | differing px (missing + extra) | total ms | median ms | max peak MiB |"
+        "| tool | images | curves | lines | SVG bytes | differing px (missing + extra) | total ms | median ms | total CPU ms | median CPU ms | max peak MiB |"
     );
-    let _ = writeln!(s, "|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+    let _ = writeln!(s, "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
     for c in configs {
         let mine: Vec<&Row> = rows.iter().filter(|r| r.tool == c.label).collect();
         if mine.is_empty() {
@@ -596,9 +634,15 @@ fn report(
             .filter_map(|r| r.peak_mib)
             .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
         let (missing, extra) = (sum(&|r| r.missing), sum(&|r| r.extra));
+        let mut cpu: Vec<f64> = mine.iter().filter_map(|r| r.cpu_ms).collect();
+        let (cpu_total, cpu_median) = if cpu.len() == mine.len() {
+            (Some(cpu.iter().sum()), Some(median(&mut cpu)))
+        } else {
+            (None, None)
+        };
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} ({} + {}) | {:.1} | {:.1} | {} |",
+            "| {} | {} | {} | {} | {} | {} ({} + {}) | {:.1} | {:.1} | {} | {} | {} |",
             c.label,
             mine.len(),
             sum(&|r| r.counts.curves),
@@ -609,55 +653,61 @@ fn report(
             extra,
             total,
             median(&mut times),
+            ms(cpu_total),
+            ms(cpu_median),
             mib(peak)
         );
     }
 
-    let find = |image: &str, tool: &str| {
-        rows.iter()
-            .find(|r| r.image == image && r.tool == tool)
-            .map(|r| r.median_ms)
-    };
+    let find = |image: &str, tool: &str| rows.iter().find(|r| r.image == image && r.tool == tool);
     let _ = writeln!(
         s,
         "\nTime of layertrace conic relative to potrace (default), per image:\n"
     );
     let _ = writeln!(
         s,
-        "| image | size | foreground px | potrace ms | layertrace conic ms | ratio |"
+        "| image | size | foreground px | potrace ms | layertrace conic ms | ratio | potrace CPU ms | layertrace conic CPU ms | CPU ratio |"
     );
-    let _ = writeln!(s, "|---|--:|--:|--:|--:|--:|");
-    let mut ratios = Vec::new();
+    let _ = writeln!(s, "|---|--:|--:|--:|--:|--:|--:|--:|--:|");
+    let (mut ratios, mut cpu_ratios) = (Vec::new(), Vec::new());
+    let ratio = |p: Option<f64>, l: Option<f64>, acc: &mut Vec<f64>| match (p, l) {
+        (Some(p), Some(l)) if p > 0.0 => {
+            acc.push(l / p);
+            format!("{:.1}×", l / p)
+        }
+        _ => "n/a".to_string(),
+    };
     for (image, w, h, fg) in sizes {
         let (p, l) = (find(image, "potrace"), find(image, "layertrace conic"));
-        let cell = |t: Option<f64>| t.map_or_else(|| "n/a".to_string(), |t| format!("{t:.1}"));
-        let ratio = match (p, l) {
-            (Some(p), Some(l)) if p > 0.0 => {
-                ratios.push(l / p);
-                format!("{:.1}×", l / p)
-            }
-            _ => "n/a".to_string(),
-        };
+        let (pw, lw) = (p.map(|r| r.median_ms), l.map(|r| r.median_ms));
+        let (pc, lc) = (p.and_then(|r| r.cpu_ms), l.and_then(|r| r.cpu_ms));
         let _ = writeln!(
             s,
-            "| {image} | {w}×{h} | {fg} | {} | {} | {ratio} |",
-            cell(p),
-            cell(l)
+            "| {image} | {w}×{h} | {fg} | {} | {} | {} | {} | {} | {} |",
+            ms(pw),
+            ms(lw),
+            ratio(pw, lw, &mut ratios),
+            ms(pc),
+            ms(lc),
+            ratio(pc, lc, &mut cpu_ratios)
         );
     }
-    if !ratios.is_empty() {
-        let geo = (ratios.iter().map(|r| r.ln()).sum::<f64>() / ratios.len() as f64).exp();
-        let _ = writeln!(
-            s,
-            "\nRatio: median {:.1}×, geometric mean {geo:.1}× over {} images.",
-            median(&mut ratios),
-            ratios.len()
-        );
+    for (name, v) in [("wall", &mut ratios), ("CPU", &mut cpu_ratios)] {
+        if !v.is_empty() {
+            let geo = (v.iter().map(|r| r.ln()).sum::<f64>() / v.len() as f64).exp();
+            let _ = writeln!(
+                s,
+                "\nRatio of {name} times: median {:.1}×, geometric mean {geo:.1}× over {} images.",
+                median(v),
+                v.len()
+            );
+        }
     }
     let _ = writeln!(
         s,
         "\nTimes: median of {runs} runs of the whole command (process start, reading the mask \
-         file, writing the SVG), layertrace with `--threads 1`. Peak MiB: maximum resident set \
+         file, writing the SVG), layertrace with `--threads 1`; ms is wall time, CPU ms the \
+         child's user + system time (`getrusage(RUSAGE_CHILDREN)` differences). Peak MiB: maximum resident set \
          size of one run (`/usr/bin/time -f %M`). Curves: C/S/Q/T/A commands; lines: L/H/V \
          (implicit repetitions expanded; M and Z not counted). Differing pixels: the SVG \
          rasterized by usvg + tiny-skia without anti-aliasing, pixel centres, compared with the \
