@@ -1,7 +1,9 @@
 //! Side-by-side comparison of layertrace with potrace and vtracer, measured the same way.
 //!
 //! `cargo build --release --examples && target/release/examples/compare [--runs N]
-//! [--work DIR] IMAGES…` (or `scripts/compare.sh`, which installs the tools first).
+//! [--work DIR] [--diffs] IMAGES…` (or `scripts/compare.sh`, which installs the tools
+//! first). The SVGs (and with `--diffs` a difference picture per SVG: input black on white,
+//! missing pixels red, extra blue) stay in the work directory (default `target/compare`).
 //!
 //! For every image, the mask is layertrace's default thresholding (`load_path` with default
 //! options: foreground = luma < 128). It is written once as a 0/255 grey PNG (read by
@@ -25,7 +27,7 @@
 //! are not counted. A tool that cannot be run is reported on standard error and its rows
 //! are skipped.
 
-use layertrace::{compare, load_path, rasterize_svg, LoadOptions, Mask};
+use layertrace::{compare, diff_image, load_path, rasterize_svg, LoadOptions, Mask};
 use std::ffi::OsString;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -88,18 +90,21 @@ struct Row {
 
 struct Options {
     runs: usize,
+    /// Write a difference picture per SVG (input black, missing red, extra blue).
+    diffs: bool,
     work: PathBuf,
     images: Vec<PathBuf>,
 }
 
 fn usage() -> ! {
-    eprintln!("usage: compare [--runs N] [--work DIR] IMAGE…");
+    eprintln!("usage: compare [--runs N] [--work DIR] [--diffs] IMAGE…");
     std::process::exit(2);
 }
 
 fn parse_args() -> Options {
     let mut opts = Options {
         runs: 5,
+        diffs: false,
         work: PathBuf::from("target/compare"),
         images: Vec::new(),
     };
@@ -114,6 +119,7 @@ fn parse_args() -> Options {
                     .unwrap_or_else(|| usage());
             }
             Some("--work") => opts.work = args.next().map(PathBuf::from).unwrap_or_else(|| usage()),
+            Some("--diffs") => opts.diffs = true,
             Some("-h" | "--help") => usage(),
             _ => opts.images.push(PathBuf::from(a)),
         }
@@ -501,6 +507,12 @@ fn measure(
         count_commands(&svg).ok_or_else(|| format!("bad path data in {}", output.display()))?;
     let actual = rasterize_svg(&sized, mask.width(), mask.height()).map_err(|e| e.to_string())?;
     let r = compare(mask, &actual);
+    if opts.diffs {
+        let path = opts.work.join(format!("{image}.{slug}.diff.png"));
+        diff_image(mask, &actual)
+            .save(&path)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    }
     let mut times = Vec::with_capacity(opts.runs);
     let mut cpu = Vec::with_capacity(opts.runs);
     for _ in 0..opts.runs {
