@@ -153,38 +153,53 @@ fn moore_trace(mask: &Mask, p0: Pixel, back0: usize) -> Vec<Pixel> {
 /// A "visited" bit per pixel.
 struct Visited(Mask);
 
-impl Visited {
-    fn test_and_set(&mut self, p: Pixel) -> bool {
-        let (x, y) = (i64::from(p.x), i64::from(p.y));
-        let was = self.0.get(x, y);
-        self.0.set(x, y, true);
-        was
-    }
-}
-
 /// Marks the component of `start` (8-connected if foreground, 4-connected otherwise) as
 /// visited; returns true when it touches the image border.
+///
+/// Span filling: each stack entry is a seed pixel; its whole horizontal run of unvisited
+/// pixels of the same value is marked at once, and the rows above and below are scanned over
+/// the run (widened by one pixel on each side for 8-connectivity) for new seeds, one per
+/// run. Work is proportional to the pixels marked, with one stack entry per run.
 fn flood(mask: &Mask, visited: &mut Visited, start: Pixel, stack: &mut Vec<Pixel>) -> bool {
     let value = fg(mask, start);
     let (w, h) = (i64::from(mask.width()), i64::from(mask.height()));
-    let step = if value { 1 } else { 2 }; // 8 neighbours, or the four even directions
+    let reach = i64::from(value); // 8-connected foreground reaches diagonally
+    let same = |visited: &Visited, x: i64, y: i64| {
+        x >= 0 && y >= 0 && x < w && y < h && mask.get(x, y) == value && !visited.0.get(x, y)
+    };
     let mut touches = false;
     stack.clear();
-    visited.test_and_set(start);
     stack.push(start);
     while let Some(p) = stack.pop() {
         let (x, y) = (i64::from(p.x), i64::from(p.y));
-        if x == 0 || y == 0 || x == w - 1 || y == h - 1 {
+        if !same(visited, x, y) {
+            continue;
+        }
+        let mut left = x;
+        while same(visited, left - 1, y) {
+            left -= 1;
+        }
+        let mut right = x;
+        while same(visited, right + 1, y) {
+            right += 1;
+        }
+        for xx in left..=right {
+            visited.0.set(xx, y, true);
+        }
+        if y == 0 || y == h - 1 || left == 0 || right == w - 1 {
             touches = true;
         }
-        for d in (0..8).step_by(step) {
-            let q = offset(p, d);
-            let (qx, qy) = (i64::from(q.x), i64::from(q.y));
-            if qx < 0 || qy < 0 || qx >= w || qy >= h {
+        for ny in [y - 1, y + 1] {
+            if ny < 0 || ny >= h {
                 continue;
             }
-            if mask.get(qx, qy) == value && !visited.test_and_set(q) {
-                stack.push(q);
+            let mut in_run = false;
+            for xx in (left - reach).max(0)..=(right + reach).min(w - 1) {
+                let s = same(visited, xx, ny);
+                if s && !in_run {
+                    stack.push(Pixel::new(xx as i32, ny as i32));
+                }
+                in_run = s;
             }
         }
     }

@@ -237,14 +237,8 @@ pub fn decompose_points(points: &[Pixel], rec: &mut Recognizer, rule: OutlierRul
                 }
             }
             match rec.recognize() {
-                Outcome::Described => match rec.certificate() {
-                    Some(c) => {
-                        certificate = c;
-                        j += 1;
-                    }
-                    None => break,
-                },
-                Outcome::NotDescribed | Outcome::Undecided => break,
+                Outcome::Described if rec.certificate_into(&mut certificate) => j += 1,
+                _ => break,
             }
         }
         pieces.push(Piece {

@@ -431,6 +431,25 @@ impl Recognizer {
         })
     }
 
+    /// Copies the current certificate into `out`, reusing its allocations (no allocation on
+    /// the hot path of a decomposition). Returns false, leaving `out` alone, when there is
+    /// none (see [`Recognizer::certificate`]).
+    pub fn certificate_into(&self, out: &mut Certificate) -> bool {
+        if !self.cert_valid {
+            return false;
+        }
+        let Some((a, e)) = self.cert.as_ref() else {
+            return false;
+        };
+        out.origin.clone_from(&self.origin);
+        out.coefficients.clone_from(a);
+        out.lower = e.lower;
+        out.upper = e.upper;
+        out.above = e.above;
+        out.below = e.below;
+        true
+    }
+
     /// The witness of the last [`Outcome::NotDescribed`] answer.
     pub fn witness(&self) -> Option<&Witness> {
         self.witness.as_ref()
