@@ -117,27 +117,37 @@ pub fn polynomial_of(
 /// certificate separates them too, but with whatever margin its rounding left — often a
 /// thousandth of a pixel — while pixel-exact rendering wants the curve well clear of every
 /// pixel centre. Falls back to the certificate's [`boundary_level`] curve when no
-/// separation is found (e.g. no RIGHT outlier).
+/// separation is found (e.g. no RIGHT outlier). Returns the curve and its clearance: the
+/// smallest first-order distance (pixels) from it to the centres of the piece's pixels and
+/// RIGHT outliers, which bounds how far a drawing of it may stray.
 pub fn border_polynomial(
     basis: &dyn Basis,
     points: &[Pixel],
     piece: &Piece,
     rule: OutlierRule,
-) -> Option<Polynomial> {
+) -> Option<(Polynomial, f64)> {
     let (right, left) = piece_outliers(points, piece.first, piece.last, rule);
     let xy = |p: &Pixel| vec![i64::from(p.x), i64::from(p.y)];
     let mut low: Vec<Vec<i64>> = points[piece.first..=piece.last].iter().map(xy).collect();
     low.extend(left.iter().map(xy));
     let high: Vec<Vec<i64>> = right.iter().map(xy).collect();
     let origin = &piece.certificate.origin;
-    match max_margin_direction(basis, origin, &low, &high, true) {
+    let poly = match max_margin_direction(basis, origin, &low, &high, true) {
         Some((a, level)) => polynomial_of(basis, origin, &a, level),
         None => level_polynomial(
             basis,
             &piece.certificate,
             boundary_level(&piece.certificate),
         ),
-    }
+    }?;
+    // The clearance: the smallest first-order distance |f| / |∇f| from the curve to the
+    // centres of the piece's pixels and of the background pixels beside it.
+    let clearance = points[piece.first..=piece.last]
+        .iter()
+        .chain(&right)
+        .map(|p| poly.distance_estimate(Point::new(f64::from(p.x) + 0.5, f64::from(p.y) + 0.5)))
+        .fold(f64::INFINITY, f64::min);
+    Some((poly, clearance))
 }
 
 /// The type of the level curve `poly = 0`.

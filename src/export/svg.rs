@@ -510,14 +510,26 @@ fn build(
     let mut out = ContourPath::default();
     let mut b = Builder::new();
     let m = pieces.len();
+    let mut tolerances: Vec<f64> = Vec::with_capacity(pieces.len());
     let mut polys: Vec<Option<Polynomial>> = pieces
         .iter()
         .map(|p| {
             if p.certificate.is_zero() {
                 out.fallbacks.zero_certificate += 1;
+                tolerances.push(tolerance);
                 return None;
             }
-            let poly = border_polynomial(basis, points, p, OutlierRule::NotInPiece);
+            let poly = border_polynomial(basis, points, p, OutlierRule::NotInPiece).map(
+                |(poly, clearance)| {
+                    // Fitted cubics must not cross a pixel centre: stay within half the
+                    // clearance (at least 1/1000 px), and never beyond the asked tolerance.
+                    tolerances.push((clearance / 2.0).clamp(1e-3, tolerance));
+                    poly
+                },
+            );
+            if poly.is_none() {
+                tolerances.push(tolerance);
+            }
             if poly.is_none() {
                 out.fallbacks.no_polynomial += 1;
             }
@@ -613,7 +625,7 @@ fn build(
                 .iter()
                 .map(|&p| centre(p))
                 .collect();
-            match level_curve_path(poly, from, to, &guide, tolerance)
+            match level_curve_path(poly, from, to, &guide, tolerances[k])
                 .filter(|(cmds, _)| stays_near(from, cmds, &points[piece.first..=piece.last]))
             {
                 Some((cmds, err)) => {
