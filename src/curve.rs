@@ -41,6 +41,14 @@ fn index(a: u32, b: u32) -> usize {
     k * (k + 1) / 2 + b as usize
 }
 
+/// The highest total degree with a non-zero coefficient in dense triangular storage.
+fn top_degree(c: &[f64; N_COEFFS]) -> usize {
+    (0..=MAX_DEGREE as usize)
+        .rev()
+        .find(|&k| (0..=k).any(|b| c[k * (k + 1) / 2 + b] != 0.0))
+        .unwrap_or(0)
+}
+
 /// Binomial coefficient `n choose k` as `f64` (exact for `n ≤ MAX_DEGREE`).
 fn binomial(n: u32, k: u32) -> f64 {
     let mut r = 1.0;
@@ -66,6 +74,8 @@ pub struct Polynomial {
     coeffs: [f64; N_COEFFS],
     /// Origin of the evaluation frame.
     origin: Point,
+    /// Highest total degree with a non-zero local coefficient (bounds the evaluation loops).
+    top: usize,
     /// Coefficients in the evaluation frame: `f = Σ local_ab (x − ox)^a (y − oy)^b`.
     local: [f64; N_COEFFS],
 }
@@ -133,6 +143,7 @@ impl Polynomial {
         Some(Polynomial {
             coeffs,
             origin,
+            top: top_degree(&local),
             local,
         })
         .filter(Polynomial::is_finite)
@@ -143,6 +154,7 @@ impl Polynomial {
         Polynomial {
             coeffs,
             origin: Point::ZERO,
+            top: top_degree(&coeffs),
             local: coeffs,
         }
     }
@@ -182,6 +194,7 @@ impl Polynomial {
     }
 
     fn powers(p: Point) -> ([f64; 7], [f64; 7]) {
+        // (Only powers up to the degree in use are read.)
         let mut xp = [1.0; 7];
         let mut yp = [1.0; 7];
         for k in 1..7 {
@@ -195,7 +208,7 @@ impl Polynomial {
     pub fn eval(&self, p: Point) -> f64 {
         let (xp, yp) = Self::powers((p - self.origin).to_point());
         let mut s = 0.0;
-        for k in 0..=MAX_DEGREE as usize {
+        for k in 0..=self.top {
             for b in 0..=k {
                 s += self.local[k * (k + 1) / 2 + b] * xp[k - b] * yp[b];
             }
@@ -207,7 +220,7 @@ impl Polynomial {
     pub fn gradient(&self, p: Point) -> Vec2 {
         let (xp, yp) = Self::powers((p - self.origin).to_point());
         let (mut gx, mut gy) = (0.0, 0.0);
-        for k in 1..=MAX_DEGREE as usize {
+        for k in 1..=self.top {
             for b in 0..=k {
                 let a = k - b;
                 let c = self.local[k * (k + 1) / 2 + b];

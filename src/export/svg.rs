@@ -478,15 +478,17 @@ pub fn contour_path(
 fn misplaced_points(contour: &Contour, path: &BezPath) -> Vec<usize> {
     let points = &contour.points;
     let n = points.len();
+    let on_contour: std::collections::HashSet<Pixel> = points.iter().copied().collect();
+    let index = RowWinding::new(path);
     let mut bad = Vec::new();
     // Foreground has winding ≠ 0 inside an outer border and 0 inside a hole border.
-    let foreground = |p: Pixel| (kurbo::Shape::winding(path, centre(p)) != 0) != contour.hole;
+    let foreground = |p: Pixel| (index.winding(centre(p)) != 0) != contour.hole;
     for i in 0..n {
         let (prev, cur, next) = (points[(i + n - 1) % n], points[i], points[(i + 1) % n]);
         let mut ok = foreground(cur);
         if let Some(sides) = neighbour_sides(prev, cur, next) {
             for (q, right, _) in sides {
-                if right && !points.contains(&q) {
+                if right && !on_contour.contains(&q) {
                     ok &= !foreground(q);
                 }
             }
@@ -496,6 +498,55 @@ fn misplaced_points(contour: &Contour, path: &BezPath) -> Vec<usize> {
         }
     }
     bad
+}
+
+/// Winding numbers at pixel centres without visiting every segment: the segments are
+/// bucketed by the pixel rows their bounding boxes span, each bucket kept as a path of
+/// disjoint open segments, whose winding number at a point is the sum of its segments'
+/// (kurbo counts crossings of a leftward ray per segment).
+struct RowWinding {
+    first_row: i64,
+    rows: Vec<BezPath>,
+}
+
+impl RowWinding {
+    fn new(path: &BezPath) -> RowWinding {
+        use kurbo::{ParamCurve, ParamCurveExtrema};
+        let segs: Vec<(kurbo::PathSeg, i64, i64)> = path
+            .segments()
+            .map(|seg| {
+                let b = seg.bounding_box();
+                (seg, b.y0.floor() as i64, b.y1.floor() as i64)
+            })
+            .collect();
+        let first_row = segs.iter().map(|s| s.1).min().unwrap_or(0);
+        let last_row = segs.iter().map(|s| s.2).max().unwrap_or(0);
+        let count = (last_row - first_row + 1).clamp(0, 1 << 24) as usize;
+        let mut rows = vec![BezPath::new(); count];
+        for (seg, r0, r1) in segs {
+            for r in r0..=r1 {
+                if let Some(row) = rows.get_mut((r - first_row) as usize) {
+                    row.move_to(seg.start());
+                    match seg {
+                        kurbo::PathSeg::Line(l) => row.line_to(l.p1),
+                        kurbo::PathSeg::Quad(q) => row.quad_to(q.p1, q.p2),
+                        kurbo::PathSeg::Cubic(c) => row.curve_to(c.p1, c.p2, c.p3),
+                    }
+                }
+            }
+        }
+        RowWinding { first_row, rows }
+    }
+
+    fn winding(&self, p: Point) -> i32 {
+        let r = p.y.floor() as i64 - self.first_row;
+        if r < 0 {
+            return 0;
+        }
+        self.rows
+            .get(r as usize)
+            .map_or(0, |row| kurbo::Shape::winding(row, p))
+    }
 }
 
 /// One drawing of a contour's pieces; `cracked[j]` draws the end pixel of piece `j` and the
