@@ -2,8 +2,8 @@
 //! input gives byte-identical output across runs and thread counts.
 
 use layertrace::{
-    decompose, decomposition_json, load_path, trace, Convention, JsonHeader, LoadOptions, Model,
-    OutlierRule,
+    decompose, decomposition_json, load_path, svg_document, trace, Convention, JsonHeader,
+    LoadOptions, Model, OutlierRule, SvgOptions,
 };
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -141,7 +141,7 @@ fn blank_and_full_images() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-fn json_with_threads(path: &str, model: Model, threads: usize) -> String {
+fn outputs_with_threads(path: &str, model: Model, threads: usize) -> String {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -159,7 +159,8 @@ fn json_with_threads(path: &str, model: Model, threads: usize) -> String {
             threshold: loaded.threshold,
             invert: false,
         };
-        decomposition_json(&d, &h)
+        let svg = svg_document(&d, h.width, h.height, &SvgOptions::default()).svg;
+        decomposition_json(&d, &h) + &svg
     })
 }
 
@@ -170,10 +171,10 @@ fn deterministic_across_runs_and_threads() {
         "samples/digits_liberationsans_cap40.png",
     ] {
         for model in [Model::Line, Model::Conic] {
-            let one = json_with_threads(path, model, 1);
-            assert_eq!(one, json_with_threads(path, model, 2), "{path} {model}");
-            assert_eq!(one, json_with_threads(path, model, 4), "{path} {model}");
-            assert_eq!(one, json_with_threads(path, model, 1), "{path} {model}");
+            let one = outputs_with_threads(path, model, 1);
+            assert_eq!(one, outputs_with_threads(path, model, 2), "{path} {model}");
+            assert_eq!(one, outputs_with_threads(path, model, 4), "{path} {model}");
+            assert_eq!(one, outputs_with_threads(path, model, 1), "{path} {model}");
         }
     }
 }

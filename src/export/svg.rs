@@ -58,6 +58,7 @@ use crate::level::border_polynomial;
 use crate::model::Basis;
 use crate::pixel::Pixel;
 use kurbo::{BezPath, PathEl, Point};
+use rayon::prelude::*;
 use std::fmt::Write as _;
 
 /// Largest distance (pixels) from the middle of two adjacent end pixels' centres to the
@@ -799,14 +800,23 @@ pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOption
     let mut joins = JoinCounts::default();
     let mut max_fit_error = 0.0f64;
     let empty = Vec::new();
-    for (i, contour) in d.contours.iter().enumerate() {
-        let pieces = d.pieces.get(i).unwrap_or(&empty);
-        let cp = contour_path(contour, pieces, &basis, tolerance);
+    // Contours are drawn independently, in parallel; collected in order, so the document
+    // does not depend on the number of threads.
+    let paths: Vec<ContourPath> = d
+        .contours
+        .par_iter()
+        .enumerate()
+        .map(|(i, contour)| {
+            let pieces = d.pieces.get(i).unwrap_or(&empty);
+            contour_path(contour, pieces, &basis, tolerance)
+        })
+        .collect();
+    for cp in &paths {
         commands.add(&cp.counts());
         fallbacks.add(&cp.fallbacks);
         joins.add(&cp.joins);
         max_fit_error = max_fit_error.max(cp.max_fit_error);
-        write_path_data(&cp, precision, &mut data);
+        write_path_data(cp, precision, &mut data);
     }
     let mut svg = String::new();
     let _ = writeln!(
