@@ -149,6 +149,13 @@ pub(crate) fn reduce_by_gcd(a: Vec<i64>, e: Extremes) -> (Vec<i64>, Extremes) {
 /// One fraction-free (Bareiss) elimination of the `(n+1) × (k+1)` system
 /// `[p_1 … p_k; 1 … 1] λ = [0; 1]` in big integers, then a rational back substitution.
 pub(crate) fn barycentric_exact(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
+    barycentric_signed(points).filter(|x| x.iter().all(|v| !v.is_negative()))
+}
+
+/// The barycentric coordinates of the origin with respect to affinely independent `points`
+/// whose affine hull holds it, whatever their signs (a negative one names a vertex to drop).
+/// Returns `None` if the points are affinely dependent or the origin is off their hull.
+pub(crate) fn barycentric_signed(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
     let k = points.len();
     let n = points.first()?.len();
     let rows = n + 1;
@@ -186,7 +193,7 @@ pub(crate) fn barycentric_exact(points: &[Vec<i64>]) -> Option<Vec<BigRational>>
         }
         x[r] = s / BigRational::from_integer(m[r][r].clone());
     }
-    x.iter().all(|v| !v.is_negative()).then_some(x)
+    Some(x)
 }
 
 /// Decides exactly whether the origin lies in the convex hull of `points`; returns the
@@ -218,6 +225,32 @@ pub(crate) fn origin_in_hull(points: &[Vec<i64>]) -> Option<(Vec<usize>, Vec<Big
         )),
         _ => None,
     }
+}
+
+/// The closest point of `conv(points)` to the origin, exactly, as an integer direction
+/// (`None` if it is the origin, or too large for `i64`). A float run that stalls near a
+/// face of `D` often has the right face: this direction then separates all of `D`.
+pub(crate) fn closest_direction(points: &[Vec<i64>]) -> Option<Vec<i64>> {
+    let mut list = ListSupport {
+        points: points
+            .iter()
+            .map(|p| p.iter().map(|&v| BigRational::from_i64(v)).collect())
+            .collect(),
+    };
+    let mut simplex = Simplex::default();
+    let params = GjkParams {
+        first_separation: false,
+        ..exact_params(list.dim())
+    };
+    let GjkOutcome::Separated { direction, .. } = gjk(&mut list, &mut simplex, &params).0 else {
+        return None;
+    };
+    let x = integer_direction(&direction);
+    let g = x.iter().fold(BigInt::zero(), |g, v| g.gcd(v));
+    if g.is_zero() {
+        return None;
+    }
+    x.iter().map(|v| (v / &g).to_i64()).collect()
 }
 
 fn exact_params(dim: usize) -> GjkParams {

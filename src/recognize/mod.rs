@@ -54,8 +54,8 @@ mod support;
 
 use crate::model::Basis;
 use exact::{
-    barycentric_exact, decide_exactly, dot_i128, origin_in_hull, round_to_certificate,
-    verify_certificate, ExactDecision, Extremes,
+    barycentric_signed, closest_direction, decide_exactly, dot_i128, origin_in_hull, reduce_by_gcd,
+    round_to_certificate, verify_certificate, ExactDecision, Extremes,
 };
 use gjk::{gjk, GjkOutcome, GjkParams};
 use lifted::LiftedSet;
@@ -232,6 +232,11 @@ pub struct Recognizer {
     rel: Vec<i64>,
     lift: Vec<i64>,
 }
+
+/// Float runs per query at most (separations, convergence, corrections).
+const MAX_FLOAT_RUNS: usize = 8;
+/// Exact corrections of a float simplex per query at most.
+const MAX_CORRECTIONS: usize = 5;
 
 const FLOAT_PARAMS: GjkParams = GjkParams {
     eps: 1e-12,
@@ -522,7 +527,13 @@ impl Recognizer {
         let mut params = FLOAT_PARAMS;
         let mut certified: Option<(Vec<i64>, Extremes)> = None;
         let mut witness = None;
-        for attempt in 0..2 {
+        // Float runs, each answer checked exactly. A float run that sees the origin inside
+        // a simplex the exact check puts it outside of drops the vertex with the most
+        // negative exact barycentric weight and goes on (a few times) before the exact
+        // fallback is called.
+        let mut converging = false;
+        let mut corrections = 0;
+        for _ in 0..MAX_FLOAT_RUNS {
             let (outcome, iterations) = gjk(&mut support, &mut self.simplex, &params);
             self.stats.float_iterations += iterations as u64;
             match outcome {
@@ -539,16 +550,15 @@ impl Recognizer {
                         .map(|v| sets.difference(&v.tag))
                         .collect();
                     certified = round_to_certificate(&sets, &y, margin, &self.max_abs, &tight);
-                    if certified.is_some() || converged || attempt == 1 {
+                    if certified.is_some() || converged || converging {
                         break;
                     }
                     // Converge to the largest-margin direction, then round again.
                     params.first_separation = false;
+                    converging = true;
                 }
-                ref outcome @ (GjkOutcome::OriginInside | GjkOutcome::Stalled) => {
-                    // Stalled runs usually end on a (numerically) full simplex around the
-                    // origin: its exact check is cheap, and decisive when it holds.
-                    if matches!(outcome, GjkOutcome::Stalled) && self.simplex.len() > n + 1 {
+                GjkOutcome::OriginInside | GjkOutcome::Stalled => {
+                    if self.simplex.len() > n + 1 {
                         break;
                     }
                     let points: Vec<Vec<i64>> = self
@@ -557,17 +567,34 @@ impl Recognizer {
                         .iter()
                         .map(|v| sets.difference(&v.tag))
                         .collect();
-                    let found = if matches!(outcome, GjkOutcome::Stalled) {
-                        barycentric_exact(&points).map(|w| ((0..points.len()).collect(), w))
-                    } else {
-                        origin_in_hull(&points)
-                    };
-                    if let Some((used, weights)) = found {
-                        let tags: Vec<Tag> =
-                            used.iter().map(|&i| self.simplex.vertices[i].tag).collect();
-                        witness = Some((tags, weights));
+                    match barycentric_signed(&points) {
+                        Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
+                            let tags = self.simplex.vertices.iter().map(|v| v.tag).collect();
+                            witness = Some((tags, w));
+                            break;
+                        }
+                        Some(w) if corrections < MAX_CORRECTIONS && self.simplex.len() > 1 => {
+                            corrections += 1;
+                            let worst = (0..w.len()).min_by(|&i, &j| w[i].cmp(&w[j])).unwrap_or(0);
+                            self.simplex.vertices.remove(worst);
+                            let k = self.simplex.vertices.len();
+                            self.simplex.weights = vec![1.0 / k as f64; k];
+                        }
+                        _ => {
+                            // Decide on the simplex exactly: the origin in its hull is a
+                            // witness; otherwise its exact closest point may separate all
+                            // of D.
+                            if let Some((used, weights)) = origin_in_hull(&points) {
+                                let tags: Vec<Tag> =
+                                    used.iter().map(|&i| self.simplex.vertices[i].tag).collect();
+                                witness = Some((tags, weights));
+                            } else if let Some(a) = closest_direction(&points) {
+                                certified =
+                                    verify_certificate(&sets, &a).map(|e| reduce_by_gcd(a, e));
+                            }
+                            break;
+                        }
                     }
-                    break;
                 }
                 GjkOutcome::Empty => break,
             }
