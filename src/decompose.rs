@@ -82,22 +82,6 @@ impl Decomposition {
     }
 }
 
-/// Index of an 8-direction, clockwise on screen from "right": right 0, down-right 1, down 2,
-/// down-left 3, left 4, up-left 5, up 6, up-right 7.
-fn direction(from: Pixel, to: Pixel) -> Option<u8> {
-    Some(match (to.x - from.x, to.y - from.y) {
-        (1, 0) => 0,
-        (1, 1) => 1,
-        (0, 1) => 2,
-        (-1, 1) => 3,
-        (-1, 0) => 4,
-        (-1, -1) => 5,
-        (0, -1) => 6,
-        (1, -1) => 7,
-        _ => return None,
-    })
-}
-
 /// `offset` strictly inside the clockwise sweep from `start` spanning `span` steps of 45°.
 #[inline]
 fn strictly_inside(d: u8, start: u8, end: u8) -> bool {
@@ -112,8 +96,8 @@ fn strictly_inside(d: u8, start: u8, end: u8) -> bool {
 /// The sides of the four 4-neighbours of `cur`, an interior point between `prev` and `next`:
 /// `(neighbour, on the right, on the left)`. Returns `None` if the steps are not 8-adjacent.
 pub fn neighbour_sides(prev: Pixel, cur: Pixel, next: Pixel) -> Option<[(Pixel, bool, bool); 4]> {
-    let a = direction(cur, prev)?;
-    let b = direction(cur, next)?;
+    let a = cur.direction_to(prev)?;
+    let b = cur.direction_to(next)?;
     let mut out = [(cur, false, false); 4];
     for (k, slot) in out.iter_mut().enumerate() {
         let d = 2 * k as u8;

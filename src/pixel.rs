@@ -30,6 +30,26 @@ impl Pixel {
         ]
     }
 
+    /// The 8-direction of `to − self`, clockwise on screen from "right": right 0,
+    /// down-right 1, down 2, down-left 3, left 4, up-left 5, up 6, up-right 7. Returns `None`
+    /// unless `to` is one of the eight neighbours.
+    #[inline]
+    pub fn direction_to(self, to: Pixel) -> Option<u8> {
+        let dx = i64::from(to.x) - i64::from(self.x);
+        let dy = i64::from(to.y) - i64::from(self.y);
+        Some(match (dx, dy) {
+            (1, 0) => 0,
+            (1, 1) => 1,
+            (0, 1) => 2,
+            (-1, 1) => 3,
+            (-1, 0) => 4,
+            (-1, -1) => 5,
+            (0, -1) => 6,
+            (1, -1) => 7,
+            _ => return None,
+        })
+    }
+
     /// True when `other` is one of the eight neighbours of `self` (not `self` itself).
     #[inline]
     pub fn is_8_adjacent(self, other: Pixel) -> bool {
@@ -50,5 +70,9 @@ mod tests {
         assert!(p.is_8_adjacent(Pixel::new(4, 5)));
         assert!(!p.is_8_adjacent(p));
         assert!(!p.is_8_adjacent(Pixel::new(5, 4)));
+        assert_eq!(p.direction_to(Pixel::new(4, 4)), Some(0));
+        assert_eq!(p.direction_to(Pixel::new(3, 3)), Some(6));
+        assert_eq!(p.direction_to(Pixel::new(4, 3)), Some(7));
+        assert_eq!(p.direction_to(p), None);
     }
 }

@@ -259,27 +259,6 @@ fn centre(p: Pixel) -> Point {
     Point::new(f64::from(p.x) + 0.5, f64::from(p.y) + 0.5)
 }
 
-/// 8-direction index of `to − from`, clockwise on screen from "right" (as in
-/// [`crate::decompose`]); `None` if not 8-adjacent.
-fn direction(from: Pixel, to: Pixel) -> Option<u8> {
-    Some(
-        match (
-            i64::from(to.x) - i64::from(from.x),
-            i64::from(to.y) - i64::from(from.y),
-        ) {
-            (1, 0) => 0,
-            (1, 1) => 1,
-            (0, 1) => 2,
-            (-1, 1) => 3,
-            (-1, 0) => 4,
-            (-1, -1) => 5,
-            (0, -1) => 6,
-            (1, -1) => 7,
-            _ => return None,
-        },
-    )
-}
-
 /// The side of pixel `p` facing the 4-direction `d` (0 right, 2 down, 4 left, 6 up),
 /// traversed with the pixel on its left (counter-clockwise on screen).
 fn side(p: Pixel, d: u8) -> [Point; 2] {
@@ -299,8 +278,8 @@ fn side(p: Pixel, d: u8) -> [Point; 2] {
 /// square.
 fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut Vec<Point>) {
     let dirs = match (
-        prev.and_then(|p| direction(cur, p)),
-        next.and_then(|q| direction(cur, q)),
+        prev.and_then(|p| cur.direction_to(p)),
+        next.and_then(|q| cur.direction_to(q)),
     ) {
         (Some(a), Some(b)) => {
             let span = match (a + 8 - b) % 8 {

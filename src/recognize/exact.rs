@@ -206,12 +206,7 @@ pub(crate) fn origin_in_hull(points: &[Vec<i64>]) -> Option<(Vec<usize>, Vec<Big
     if let Some(w) = barycentric_exact(points) {
         return Some(((0..points.len()).collect(), w));
     }
-    let mut list = ListSupport {
-        points: points
-            .iter()
-            .map(|p| p.iter().map(|&v| BigRational::from_i64(v)).collect())
-            .collect(),
-    };
+    let mut list = rational_list(points);
     let mut simplex = Simplex::default();
     let params = exact_params(list.dim());
     match gjk(&mut list, &mut simplex, &params).0 {
@@ -227,16 +222,21 @@ pub(crate) fn origin_in_hull(points: &[Vec<i64>]) -> Option<(Vec<usize>, Vec<Big
     }
 }
 
-/// The closest point of `conv(points)` to the origin, exactly, as an integer direction
-/// (`None` if it is the origin, or too large for `i64`). A float run that stalls near a
-/// face of `D` often has the right face: this direction then separates all of `D`.
-pub(crate) fn closest_direction(points: &[Vec<i64>]) -> Option<Vec<i64>> {
-    let mut list = ListSupport {
+/// An explicit list of integer points as exact rationals, for the exact GJK.
+fn rational_list(points: &[Vec<i64>]) -> ListSupport<BigRational> {
+    ListSupport {
         points: points
             .iter()
             .map(|p| p.iter().map(|&v| BigRational::from_i64(v)).collect())
             .collect(),
-    };
+    }
+}
+
+/// The closest point of `conv(points)` to the origin, exactly, as an integer direction
+/// (`None` if it is the origin, or too large for `i64`). A float run that stalls near a
+/// face of `D` often has the right face: this direction then separates all of `D`.
+pub(crate) fn closest_direction(points: &[Vec<i64>]) -> Option<Vec<i64>> {
+    let mut list = rational_list(points);
     let mut simplex = Simplex::default();
     let params = GjkParams {
         first_separation: false,
