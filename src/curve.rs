@@ -1317,6 +1317,17 @@ mod tests {
 
     // ---------------------------------------------------------------- polynomials
 
+    /// `n` random monomials `x^a y^b` of degree at most 6.
+    fn random_monomials(rng: &mut Rng, n: usize) -> Vec<(u32, u32)> {
+        (0..n)
+            .map(|_| {
+                let k = (rng.next() * 7.0) as u32;
+                let b = (rng.next() * (k + 1) as f64) as u32;
+                (k - b, b)
+            })
+            .collect()
+    }
+
     #[test]
     fn from_local_agrees_with_direct_evaluation() {
         let mut rng = Rng(0x1234_5678_9abc_def1);
@@ -1324,13 +1335,7 @@ mod tests {
         let mut worst_abs: f64 = 0.0;
         for _ in 0..200 {
             let n = 1 + (rng.next() * 8.0) as usize;
-            let monomials: Vec<(u32, u32)> = (0..n)
-                .map(|_| {
-                    let k = (rng.next() * 7.0) as u32;
-                    let b = (rng.next() * (k + 1) as f64) as u32;
-                    (k - b, b)
-                })
-                .collect();
+            let monomials = random_monomials(&mut rng, n);
             let coefficients: Vec<f64> = (0..n).map(|_| rng.range(-20.0, 20.0).round()).collect();
             let origin = Point::new(
                 rng.range(0.0, 100.0).floor() + 0.5,
@@ -2137,13 +2142,7 @@ mod tests {
         let mut found = 0;
         for case in 0..300 {
             let n = 1 + (rng.next() * 10.0) as usize;
-            let monomials: Vec<(u32, u32)> = (0..n)
-                .map(|_| {
-                    let k = (rng.next() * 7.0) as u32;
-                    let b = (rng.next() * (k + 1) as f64) as u32;
-                    (k - b, b)
-                })
-                .collect();
+            let monomials = random_monomials(&mut rng, n);
             let coefficients: Vec<f64> = (0..n).map(|_| rng.range(-10.0, 10.0).round()).collect();
             let origin = Point::new(
                 rng.range(0.0, 50.0).floor() + 0.5,
