@@ -26,7 +26,7 @@ use crate::model::{Basis, Model};
 use crate::pixel::Pixel;
 use crate::recognize::{Certificate, Outcome, Recognizer, Side, Stats};
 use rayon::prelude::*;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 /// One piece of a contour: indices `first..=last` of its points and the layer describing it.
@@ -71,6 +71,8 @@ pub struct Decomposition {
     pub contours: Vec<Contour>,
     /// The pieces of each contour, in order along it.
     pub pieces: Vec<Vec<Piece>>,
+    /// The outlier rule the pieces were recognized with.
+    pub rule: OutlierRule,
     /// Work done by the recognizers.
     pub stats: Stats,
 }
@@ -125,6 +127,7 @@ pub fn piece_outliers(
         return (right, left);
     }
     let piece: std::collections::HashSet<Pixel> = points[first..=last].iter().copied().collect();
+    let (mut seen_right, mut seen_left) = (HashSet::new(), HashSet::new());
     for k in first + 1..last {
         let Some(sides) = neighbour_sides(points[k - 1], points[k], points[k + 1]) else {
             continue;
@@ -133,10 +136,10 @@ pub fn piece_outliers(
             if rule == OutlierRule::NotInPiece && piece.contains(&q) {
                 continue;
             }
-            if r && !right.contains(&q) {
+            if r && seen_right.insert(q) {
                 right.push(q);
             }
-            if l && !left.contains(&q) {
+            if l && seen_left.insert(q) {
                 left.push(q);
             }
         }
@@ -264,6 +267,7 @@ pub fn decompose(contours: Vec<Contour>, model: Model, rule: OutlierRule) -> Dec
         model,
         contours,
         pieces,
+        rule,
         stats,
     }
 }

@@ -12,11 +12,15 @@
 //!
 //! `f(x, y) = Σ coefficients[i] · basis_i(x − x0, y − y0)`; every inlier has
 //! `lower ≤ f ≤ upper`, the RIGHT outliers are strictly above `upper` and the LEFT ones
-//! strictly below `lower`. All these numbers are the recognizer's exact integers (the
-//! constant's coefficient is 0), so the inequalities hold exactly on the decimals written.
+//! strictly below `lower`. All these numbers are exact integers (the constant's coefficient
+//! is 0), so the inequalities hold exactly on the decimals written. Each piece's equation is
+//! the smallest of the recognizer's certificate and [`small_certificate`]'s (checked
+//! exactly on the piece's own sets): `-5x - 8y` with `0 ≤ f ≤ 7` rather than whatever
+//! scale the incremental recognizer's rounding left.
 
-use crate::decompose::Decomposition;
+use crate::decompose::{piece_outliers, Decomposition};
 use crate::level::piece_kind;
+use crate::recognize::small_certificate;
 use std::fmt::Write as _;
 
 /// What the JSON records besides the decomposition.
@@ -69,7 +73,19 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
             if k > 0 {
                 s.push_str(",\n    ");
             }
-            let cert = &p.certificate;
+            let xy = |q: &crate::pixel::Pixel| vec![i64::from(q.x), i64::from(q.y)];
+            let (right, left) = piece_outliers(&c.points, p.first, p.last, d.rule);
+            let small = small_certificate(
+                basis_ref,
+                &p.certificate,
+                &c.points[p.first..=p.last]
+                    .iter()
+                    .map(xy)
+                    .collect::<Vec<_>>(),
+                &right.iter().map(xy).collect::<Vec<_>>(),
+                &left.iter().map(xy).collect::<Vec<_>>(),
+            );
+            let cert = &small;
             let coefficients: Vec<String> = cert
                 .coefficients
                 .iter()

@@ -724,6 +724,112 @@ pub fn max_margin_direction(
     (top < bottom).then(|| (y, (top + bottom) / 2.0))
 }
 
+/// A certificate for the same sets with small coefficients, for people who read the
+/// equations: the largest-margin direction (GJK run to convergence) rounded at growing
+/// scales, `1, 2, 4, …` for its largest coefficient, the first that verifies exactly, divided
+/// by the gcd of its coefficients. Returns `certificate` itself when that gives nothing
+/// smaller (or the sets cannot be lifted).
+///
+/// `certificate` must describe `inliers` with `upper` above and `lower` below.
+pub fn small_certificate(
+    basis: &dyn Basis,
+    certificate: &Certificate,
+    inliers: &[Vec<i64>],
+    upper: &[Vec<i64>],
+    lower: &[Vec<i64>],
+) -> Certificate {
+    let fallback = certificate.clone();
+    let (pd, n) = (basis.point_dim(), basis.dim());
+    let origin = &certificate.origin;
+    if (upper.is_empty() && lower.is_empty()) || certificate.is_zero() || origin.len() != pd {
+        return fallback;
+    }
+    let mut max_abs = vec![0i64; n];
+    let mut fill = |pts: &[Vec<i64>]| -> Option<LiftedSet> {
+        let mut set = LiftedSet::new(pd, n);
+        let mut f = vec![0; n];
+        for p in pts {
+            let rel: Vec<i64> = p
+                .iter()
+                .zip(origin)
+                .map(|(a, b)| a.checked_sub(*b))
+                .collect::<Option<_>>()?;
+            basis.lift(&rel, &mut f)?;
+            for (m, v) in max_abs.iter_mut().zip(&f) {
+                *m = (*m).max(v.saturating_abs());
+            }
+            set.push(&rel, &f);
+        }
+        Some(set)
+    };
+    let (Some(s), Some(u), Some(l)) = (fill(inliers), fill(upper), fill(lower)) else {
+        return fallback;
+    };
+    let sets = Sets {
+        inliers: &s,
+        upper: &u,
+        lower: &l,
+    };
+    let scale: Vec<f64> = max_abs
+        .iter()
+        .map(|&m| {
+            if m > 0 {
+                (-(m as f64).log2().ceil()).exp2()
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let mut support = FloatSupport {
+        sets,
+        scale: &scale,
+        y: Vec::with_capacity(n),
+    };
+    let mut simplex = Simplex::default();
+    let params = GjkParams {
+        first_separation: false,
+        ..FLOAT_PARAMS
+    };
+    let GjkOutcome::Separated { direction, .. } = gjk(&mut support, &mut simplex, &params).0 else {
+        return fallback;
+    };
+    let y: Vec<f64> = direction.iter().zip(&scale).map(|(a, s)| a * s).collect();
+    let ymax = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let old_max = certificate
+        .coefficients
+        .iter()
+        .map(|v| v.unsigned_abs())
+        .max()
+        .unwrap_or(0);
+    if !(ymax.is_finite() && ymax > 0.0) {
+        return fallback;
+    }
+    let mut last: Option<Vec<i64>> = None;
+    for k in 0..62 {
+        let t = f64::from(k).exp2() / ymax;
+        let a: Vec<i64> = y.iter().map(|v| (v * t).round() as i64).collect();
+        if a.iter().any(|v| v.unsigned_abs() >= old_max) {
+            break;
+        }
+        if a.iter().all(|&v| v == 0) || last.as_ref() == Some(&a) {
+            continue;
+        }
+        if let Some(e) = verify_certificate(&sets, &a) {
+            let (a, e) = reduce_by_gcd(a, e);
+            return Certificate {
+                origin: origin.clone(),
+                coefficients: a,
+                lower: e.lower,
+                upper: e.upper,
+                above: e.above,
+                below: e.below,
+            };
+        }
+        last = Some(a);
+    }
+    fallback
+}
+
 /// Decides one recognition problem from scratch (convenience for tests and one-off use).
 pub fn recognize(
     basis: Arc<dyn Basis>,

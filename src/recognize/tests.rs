@@ -602,3 +602,27 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+    /// `small_certificate` returns a certificate that holds, never with larger coefficients.
+    #[test]
+    fn small_certificates_hold_and_are_not_larger(
+        model in prop_oneof![Just(Model::Line), Just(Model::Circle), Just(Model::Conic)],
+        raw in proptest::collection::vec(-6i64..=6, 10),
+        band in 1i64..40,
+    ) {
+        let basis = model.basis();
+        let coefs = &raw[..basis.dim()];
+        prop_assume!(coefs.iter().any(|&c| c != 0));
+        let (s, up, lo) = banded_instance(model, coefs, band, None, 6);
+        prop_assume!(!s.is_empty());
+        let (o, c, _) = recognize(Arc::new(model.basis()), &s, &up, &lo);
+        prop_assert_eq!(o, Outcome::Described);
+        let c = c.unwrap();
+        let small = small_certificate(&basis, &c, &s, &up, &lo);
+        prop_assert!(certificate_holds(&basis, &small, &s, &up, &lo), "{small:?}");
+        let size = |c: &Certificate| c.coefficients.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+        prop_assert!(size(&small) <= size(&c), "{small:?} larger than {c:?}");
+    }
+}
