@@ -1,7 +1,41 @@
 //! layertrace: bitmap to SVG with exact curves, by Digital Level Layers.
 //!
 //! Implements *Digital Level Layers for Digital Curve Decomposition and Vectorization*
-//! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014).
+//! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014). Data flows through the stages in order:
+//! [`load_path`] (image → foreground [`Mask`]), [`trace`] (borders as 8-connected pixel
+//! paths), [`decompose`] (greedy pieces, each with an exact [`Certificate`] from the
+//! [`Recognizer`]), then [`decomposition_json`], [`decomposition_picture`] and
+//! [`svg_document`], and [`fidelity`] to rasterize the SVG back and count differing pixels.
+//!
+//! ```
+//! use layertrace::{decompose, fidelity, svg_document, trace, Convention, Mask, Model,
+//!                  OutlierRule, SvgOptions};
+//!
+//! // A filled disc of radius 6 on a 16 × 16 bitmap (pixel centres within the circle).
+//! let mask = Mask::from_fn(16, 16, |x, y| {
+//!     let (dx, dy) = (x as f64 + 0.5 - 8.0, y as f64 + 0.5 - 8.0);
+//!     dx * dx + dy * dy <= 36.0
+//! });
+//! let contours = trace(&mask, Convention::Default);
+//! assert_eq!(contours.len(), 1);
+//!
+//! let d = decompose(contours, Model::Circle, OutlierRule::NotInPiece);
+//! let basis = Model::Circle.basis();
+//! for (contour, pieces) in d.contours.iter().zip(&d.pieces) {
+//!     for piece in pieces {
+//!         // Every pixel of the piece lies in its layer, exactly.
+//!         let c = &piece.certificate;
+//!         for p in &contour.points[piece.first..=piece.last] {
+//!             let f = c.value(&basis, &[p.x.into(), p.y.into()]).unwrap();
+//!             assert!(c.lower <= f && f <= c.upper);
+//!         }
+//!     }
+//! }
+//!
+//! let svg = svg_document(&d, 16, 16, &SvgOptions::default());
+//! let report = fidelity(&svg.svg, &mask).unwrap();
+//! println!("{} pieces, {} differing pixels", d.piece_count(), report.differing);
+//! ```
 
 mod bitmap;
 mod contour;
