@@ -107,7 +107,8 @@ fn fill_group(group: &usvg::Group, pixmap: &mut tiny_skia::Pixmap) {
     }
 }
 
-/// Rasterizes `svg` onto a `width` × `height` mask (see the [module documentation](self)).
+/// Rasterizes `svg` onto a `width` × `height` mask: usvg parse, every path flattened and
+/// filled by tiny-skia without anti-aliasing (a pixel is painted when its centre is inside).
 ///
 /// Fails with [`Error::SvgParse`] when usvg rejects the document and with
 /// [`Error::Raster`] when no pixmap of that size can be made (zero or huge size).

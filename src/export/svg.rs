@@ -132,12 +132,12 @@ impl CommandCounts {
 pub struct FallbackCounts {
     /// 1–2-pixel pieces with the zero certificate (no equation).
     pub zero_certificate: usize,
-    /// [`level_polynomial`] gave no polynomial.
+    /// [`border_polynomial`] gave no polynomial.
     pub no_polynomial: usize,
     /// The curve has no point within [`JUNCTION_MAX_DISTANCE`] of a junction.
     pub junction: usize,
     /// [`level_curve_path`] could not draw the curve between the junctions, or the curve
-    /// strays farther than [`STRAY_MARGIN`] from the piece's pixels.
+    /// strays farther than `STRAY_MARGIN` (2 px) from the piece's pixels.
     pub curve: usize,
     /// The pieces did not cover the contour consecutively: the whole contour was drawn along
     /// its cracks (counted once per contour).
@@ -404,7 +404,8 @@ const REPAIR_ROUNDS: usize = 4;
 
 /// The closed path of one contour decomposed into `pieces` described in `basis`; fitted
 /// cubics stay within `tolerance` pixels of their curve. See the
-/// [module documentation](self) for joins, fallbacks and the repair of junctions.
+/// module documentation of `export::svg` (in the source) for joins, fallbacks and the
+/// repair of junctions.
 pub fn contour_path(
     contour: &Contour,
     pieces: &[Piece],
@@ -763,8 +764,9 @@ fn xml_escape(v: &str) -> String {
     s
 }
 
-/// The SVG document of a decomposition of a `width` × `height` image (see the
-/// [module documentation](self)).
+/// The SVG document of a decomposition of a `width` × `height` image: one `<path>` with
+/// `fill-rule="nonzero"`, outer borders counter-clockwise, holes clockwise, width, height
+/// and viewBox the image size in pixels.
 pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOptions) -> SvgOutput {
     let basis = d.model.basis();
     let precision = usize::from(opts.precision.min(12));
