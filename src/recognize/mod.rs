@@ -502,18 +502,7 @@ impl Recognizer {
             };
             return self.accept(vec![0; n], e);
         }
-        // Powers of two bringing every coordinate near magnitude one.
-        let scale: Vec<f64> = self
-            .max_abs
-            .iter()
-            .map(|&m| {
-                if m > 0 {
-                    (-(m as f64).log2().ceil()).exp2()
-                } else {
-                    1.0
-                }
-            })
-            .collect();
+        let scale = power_of_two_scale(&self.max_abs);
         let mut support = FloatSupport {
             sets,
             scale: &scale,
@@ -641,6 +630,67 @@ impl Recognizer {
     }
 }
 
+/// Powers of two bringing every lifted coordinate near magnitude one (`max_abs[i]` bounds
+/// `|F_i|`): separation is invariant under this diagonal map, and the float solves are far
+/// better conditioned.
+fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
+    max_abs
+        .iter()
+        .map(|&m| {
+            if m > 0 {
+                (-(m as f64).log2().ceil()).exp2()
+            } else {
+                1.0
+            }
+        })
+        .collect()
+}
+
+/// Lifts `points − origin` into a set, raising `max_abs` to bound the liftings. Returns
+/// `None` on overflow.
+fn lift_points(
+    basis: &dyn Basis,
+    origin: &[i64],
+    points: &[Vec<i64>],
+    max_abs: &mut [i64],
+) -> Option<LiftedSet> {
+    let (pd, n) = (basis.point_dim(), basis.dim());
+    let mut set = LiftedSet::new(pd, n);
+    let mut f = vec![0; n];
+    for p in points {
+        let rel: Vec<i64> = p
+            .iter()
+            .zip(origin)
+            .map(|(a, b)| a.checked_sub(*b))
+            .collect::<Option<_>>()?;
+        basis.lift(&rel, &mut f)?;
+        for (m, v) in max_abs.iter_mut().zip(&f) {
+            *m = (*m).max(v.saturating_abs());
+        }
+        set.push(&rel, &f);
+    }
+    Some(set)
+}
+
+/// The float GJK run to convergence in coordinates scaled by `scale`: the direction of
+/// largest margin, unscaled. `None` if the sets are not (numerically) separated.
+fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
+    let mut support = FloatSupport {
+        sets,
+        scale,
+        y: Vec::with_capacity(scale.len()),
+    };
+    let mut simplex = Simplex::default();
+    let params = GjkParams {
+        first_separation: false,
+        ..FLOAT_PARAMS
+    };
+    let GjkOutcome::Separated { direction, .. } = gjk(&mut support, &mut simplex, &params).0 else {
+        return None;
+    };
+    Some(direction.iter().zip(scale).map(|(a, s)| a * s).collect())
+}
+
 /// The separating direction of largest margin between `low` and `high` point sets (relative
 /// to `origin`), and the level half-way between them: `a·F(p) < level` on `low`,
 /// `> level` on `high`, in `f64`. Not a certificate: a drawing aid for exporters, which want
@@ -663,55 +713,21 @@ pub fn max_margin_direction(
         return None;
     }
     let mut max_abs = vec![0i64; n];
-    let mut fill = |pts: &[Vec<i64>]| -> Option<LiftedSet> {
-        let mut set = LiftedSet::new(pd, n);
-        let mut f = vec![0; n];
-        for p in pts {
-            let rel: Vec<i64> = p
-                .iter()
-                .zip(origin)
-                .map(|(a, b)| a.checked_sub(*b))
-                .collect::<Option<_>>()?;
-            basis.lift(&rel, &mut f)?;
-            for (m, v) in max_abs.iter_mut().zip(&f) {
-                *m = (*m).max(v.saturating_abs());
-            }
-            set.push(&rel, &f);
-        }
-        Some(set)
-    };
+    let mut fill = |pts: &[Vec<i64>]| lift_points(basis, origin, pts, &mut max_abs);
     let low_set = fill(low)?;
     let high_set = fill(high)?;
     let empty = LiftedSet::new(pd, n);
-    let scale: Vec<f64> = max_abs
-        .iter()
-        .map(|&m| {
-            if scaled && m > 0 {
-                (-(m as f64).log2().ceil()).exp2()
-            } else {
-                1.0
-            }
-        })
-        .collect();
+    let scale = if scaled {
+        power_of_two_scale(&max_abs)
+    } else {
+        vec![1.0; n]
+    };
     let sets = Sets {
         inliers: &low_set,
         upper: &high_set,
         lower: &empty,
     };
-    let mut support = FloatSupport {
-        sets,
-        scale: &scale,
-        y: Vec::with_capacity(n),
-    };
-    let mut simplex = Simplex::default();
-    let params = GjkParams {
-        first_separation: false,
-        ..FLOAT_PARAMS
-    };
-    let GjkOutcome::Separated { direction, .. } = gjk(&mut support, &mut simplex, &params).0 else {
-        return None;
-    };
-    let y: Vec<f64> = direction.iter().zip(&scale).map(|(a, s)| a * s).collect();
+    let y = largest_margin_direction(sets, &scale)?;
     let value = |row: &[f64]| row.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>();
     let top = low_set
         .float_rows()
@@ -745,23 +761,7 @@ pub fn small_certificate(
         return fallback;
     }
     let mut max_abs = vec![0i64; n];
-    let mut fill = |pts: &[Vec<i64>]| -> Option<LiftedSet> {
-        let mut set = LiftedSet::new(pd, n);
-        let mut f = vec![0; n];
-        for p in pts {
-            let rel: Vec<i64> = p
-                .iter()
-                .zip(origin)
-                .map(|(a, b)| a.checked_sub(*b))
-                .collect::<Option<_>>()?;
-            basis.lift(&rel, &mut f)?;
-            for (m, v) in max_abs.iter_mut().zip(&f) {
-                *m = (*m).max(v.saturating_abs());
-            }
-            set.push(&rel, &f);
-        }
-        Some(set)
-    };
+    let mut fill = |pts: &[Vec<i64>]| lift_points(basis, origin, pts, &mut max_abs);
     let (Some(s), Some(u), Some(l)) = (fill(inliers), fill(upper), fill(lower)) else {
         return fallback;
     };
@@ -770,30 +770,9 @@ pub fn small_certificate(
         upper: &u,
         lower: &l,
     };
-    let scale: Vec<f64> = max_abs
-        .iter()
-        .map(|&m| {
-            if m > 0 {
-                (-(m as f64).log2().ceil()).exp2()
-            } else {
-                1.0
-            }
-        })
-        .collect();
-    let mut support = FloatSupport {
-        sets,
-        scale: &scale,
-        y: Vec::with_capacity(n),
-    };
-    let mut simplex = Simplex::default();
-    let params = GjkParams {
-        first_separation: false,
-        ..FLOAT_PARAMS
-    };
-    let GjkOutcome::Separated { direction, .. } = gjk(&mut support, &mut simplex, &params).0 else {
+    let Some(y) = largest_margin_direction(sets, &power_of_two_scale(&max_abs)) else {
         return fallback;
     };
-    let y: Vec<f64> = direction.iter().zip(&scale).map(|(a, s)| a * s).collect();
     let ymax = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let old_max = certificate
         .coefficients
