@@ -428,7 +428,9 @@ pub fn contour_path(
         return out;
     }
     let mut cracked = vec![false; pieces.len()];
-    let mut out = build(points, pieces, basis, tolerance, &cracked);
+    // The border curves do not depend on the repairs: computed once.
+    let curves = Curves::new(points, pieces, basis, tolerance);
+    let mut out = build(points, pieces, &curves, &cracked);
     for _ in 0..REPAIR_ROUNDS {
         let bad = misplaced_points(contour, &out.to_bez_path());
         let mut changed = false;
@@ -449,7 +451,7 @@ pub fn contour_path(
         if !changed {
             break;
         }
-        out = build(points, pieces, basis, tolerance, &cracked);
+        out = build(points, pieces, &curves, &cracked);
     }
     out
 }
@@ -530,44 +532,59 @@ impl RowWinding {
     }
 }
 
+/// The border curve of every piece of a contour, with the fitting tolerance it allows.
+struct Curves {
+    /// The curve, or `None` (zero certificate, or no polynomial).
+    polys: Vec<Option<Polynomial>>,
+    /// min(tolerance, clearance / 2), at least 1/1000 px; `tolerance` without a curve.
+    tolerances: Vec<f64>,
+    zero_certificate: usize,
+    no_polynomial: usize,
+}
+
+impl Curves {
+    fn new(points: &[Pixel], pieces: &[Piece], basis: &dyn Basis, tolerance: f64) -> Curves {
+        let mut c = Curves {
+            polys: Vec::with_capacity(pieces.len()),
+            tolerances: Vec::with_capacity(pieces.len()),
+            zero_certificate: 0,
+            no_polynomial: 0,
+        };
+        for p in pieces {
+            if p.certificate.is_zero() {
+                c.zero_certificate += 1;
+                c.polys.push(None);
+                c.tolerances.push(tolerance);
+                continue;
+            }
+            match border_polynomial(basis, points, p, OutlierRule::NotInPiece) {
+                Some((poly, clearance)) => {
+                    // Fitted cubics must not cross a pixel centre: stay within half the
+                    // clearance (at least 1/1000 px), and never beyond the asked tolerance.
+                    c.polys.push(Some(poly));
+                    c.tolerances.push((clearance / 2.0).clamp(1e-3, tolerance));
+                }
+                None => {
+                    c.no_polynomial += 1;
+                    c.polys.push(None);
+                    c.tolerances.push(tolerance);
+                }
+            }
+        }
+        c
+    }
+}
+
 /// One drawing of a contour's pieces; `cracked[j]` draws the end pixel of piece `j` and the
 /// start pixel of the next one along their cracks (junction `j`).
-fn build(
-    points: &[Pixel],
-    pieces: &[Piece],
-    basis: &dyn Basis,
-    tolerance: f64,
-    cracked: &[bool],
-) -> ContourPath {
+fn build(points: &[Pixel], pieces: &[Piece], curves: &Curves, cracked: &[bool]) -> ContourPath {
     let mut out = ContourPath::default();
     let mut b = Builder::new();
     let m = pieces.len();
-    let mut tolerances: Vec<f64> = Vec::with_capacity(pieces.len());
-    let mut polys: Vec<Option<Polynomial>> = pieces
-        .iter()
-        .map(|p| {
-            if p.certificate.is_zero() {
-                out.fallbacks.zero_certificate += 1;
-                tolerances.push(tolerance);
-                return None;
-            }
-            let poly = border_polynomial(basis, points, p, OutlierRule::NotInPiece).map(
-                |(poly, clearance)| {
-                    // Fitted cubics must not cross a pixel centre: stay within half the
-                    // clearance (at least 1/1000 px), and never beyond the asked tolerance.
-                    tolerances.push((clearance / 2.0).clamp(1e-3, tolerance));
-                    poly
-                },
-            );
-            if poly.is_none() {
-                tolerances.push(tolerance);
-            }
-            if poly.is_none() {
-                out.fallbacks.no_polynomial += 1;
-            }
-            poly
-        })
-        .collect();
+    out.fallbacks.zero_certificate = curves.zero_certificate;
+    out.fallbacks.no_polynomial = curves.no_polynomial;
+    let tolerances = &curves.tolerances;
+    let mut polys = curves.polys.clone();
     let pixel_cracks = |i: usize| crack_polyline(points, i, i);
     // A piece whose both end pixels are cracked and that has no more than one pixel between
     // them is drawn along its cracks.
