@@ -294,7 +294,7 @@ pub(crate) fn decide_exactly(sets: &Sets<'_>, warm: &[Tag], max_abs: &[i64]) -> 
     match gjk(&mut support, &mut simplex, &params).0 {
         GjkOutcome::Separated { direction, .. } => {
             let x = integer_direction(&direction);
-            certificate_from_big(sets, &x, max_abs)
+            certificate_from_big(sets, &x)
         }
         GjkOutcome::OriginInside => ExactDecision::NotDescribed(
             simplex.vertices.iter().map(|v| v.tag).collect(),
@@ -315,7 +315,7 @@ pub(crate) fn decide_exactly(sets: &Sets<'_>, warm: &[Tag], max_abs: &[i64]) -> 
 
 /// An `i64` certificate from an exact separating direction: the direction itself divided by
 /// its gcd when it fits, otherwise roundings of it at growing precision.
-fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt], max_abs: &[i64]) -> ExactDecision {
+fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt]) -> ExactDecision {
     let g = x.iter().fold(BigInt::zero(), |g, v| g.gcd(v));
     let reduced: Vec<BigInt> = if g.is_zero() {
         x.to_vec()
@@ -349,6 +349,5 @@ fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt], max_abs: &[i64]) -> Exact
             return ExactDecision::Described(a, e);
         }
     }
-    let _ = max_abs;
     ExactDecision::Undecided
 }
