@@ -235,15 +235,35 @@ impl Polynomial {
         Vec2::new(gx, gy)
     }
 
+    /// The value and the gradient at `p` together (one evaluation of the powers of `p`).
+    pub fn value_and_gradient(&self, p: Point) -> (f64, Vec2) {
+        let (xp, yp) = Self::powers((p - self.origin).to_point());
+        let (mut v, mut gx, mut gy) = (self.local[0], 0.0, 0.0);
+        for k in 1..=self.top {
+            for b in 0..=k {
+                let a = k - b;
+                let c = self.local[k * (k + 1) / 2 + b];
+                v += c * xp[a] * yp[b];
+                if a > 0 {
+                    gx += c * a as f64 * xp[a - 1] * yp[b];
+                }
+                if b > 0 {
+                    gy += c * b as f64 * xp[a] * yp[b - 1];
+                }
+            }
+        }
+        (v, Vec2::new(gx, gy))
+    }
+
     /// The first-order (Sampson) distance estimate `|f(p)| / |∇f(p)|` from `p` to the curve.
     ///
     /// Infinite where the gradient vanishes and `f(p) ≠ 0`.
     pub fn distance_estimate(&self, p: Point) -> f64 {
-        let v = self.eval(p).abs();
+        let (v, g) = self.value_and_gradient(p);
         if v == 0.0 {
             return 0.0;
         }
-        v / self.gradient(p).hypot()
+        v.abs() / g.hypot()
     }
 
     /// The conic `a x² + b xy + c y² + d x + e y + f`.
@@ -606,11 +626,10 @@ impl PathCommand {
 fn newton_to_curve(poly: &Polynomial, p: Point, max_distance: f64) -> Option<Point> {
     let mut q = p;
     for _ in 0..64 {
-        let v = poly.eval(q);
+        let (v, g) = poly.value_and_gradient(q);
         if v == 0.0 {
             return Some(q);
         }
-        let g = poly.gradient(q);
         let g2 = g.hypot2();
         if g2 <= 0.0 || !g2.is_finite() || !v.is_finite() {
             return None;
@@ -717,11 +736,10 @@ fn newton_system(
 ) -> Option<Point> {
     let mut x = start;
     for _ in 0..80 {
-        let (fp, fq) = (p.eval(x), q.eval(x));
+        let ((fp, gp), (fq, gq)) = (p.value_and_gradient(x), q.value_and_gradient(x));
         if fp == 0.0 && fq == 0.0 {
             break;
         }
-        let (gp, gq) = (p.gradient(x), q.gradient(x));
         let det = gp.x * gq.y - gp.y * gq.x;
         if det == 0.0 || !det.is_finite() {
             return None;
@@ -1118,8 +1136,15 @@ fn candidates(trace: &Trace, i: usize, j: usize) -> Vec<CubicBez> {
     out
 }
 
-/// Distance between a cubic and the curve: cubic samples projected onto the curve, and trace
-/// points `i..=j` to the cubic; the maximum of both.
+/// An upper bound on the distance between a cubic and the curve, in both directions: from
+/// cubic samples to the curve (the point of the curve that Newton steps along the gradient
+/// reach from the sample), and from the trace points `i..=j` to the cubic (the point of the
+/// cubic that Newton's method on `(B(t) − p)·B′(t) = 0` reaches from the previous trace
+/// point's parameter). Both are distances to actual points of the other curve, hence upper
+/// bounds of the true distances; for the small distances a fit accepts they are within
+/// `O(d²κ)` of them.
+///
+/// Stops early, returning a value above `cutoff`, once the bound exceeds `cutoff`.
 fn cubic_error(
     poly: &Polynomial,
     c: &CubicBez,
@@ -1127,33 +1152,76 @@ fn cubic_error(
     i: usize,
     j: usize,
     tol: f64,
+    cutoff: f64,
 ) -> f64 {
+    use kurbo::ParamCurveDeriv;
     let mut err: f64 = 0.0;
     const N: usize = 24;
     for k in 1..N {
         let s = c.eval(k as f64 / N as f64);
-        match project(poly, s, 4.0 * tol + 1.0) {
+        match newton_to_curve(poly, s, 4.0 * tol + 1.0) {
             Some(q) => err = err.max((q - s).hypot()),
             None => return f64::INFINITY,
         }
+        if err > cutoff {
+            return err;
+        }
     }
-    // Trace points, at most about 64 of them, evenly spread.
+    // Trace points, at most about 64 of them, evenly spread, in order along the cubic.
+    let d1 = c.deriv();
+    let d2 = d1.deriv();
     let stride = ((j - i) / 64).max(1);
+    let mut t = 0.0;
     for &p in trace.pts[i + 1..j].iter().step_by(stride) {
-        err = err.max(c.nearest(p, 1e-9).distance_sq.sqrt());
+        let mut best = (c.eval(t) - p).hypot2();
+        let mut u = t;
+        for _ in 0..8 {
+            let r = c.eval(u) - p;
+            let v1 = d1.eval(u).to_vec2();
+            let g = r.dot(v1);
+            let h = v1.hypot2() + r.dot(d2.eval(u).to_vec2());
+            let next = if h > 0.0 {
+                u - g / h
+            } else {
+                u - g.signum() * 0.05
+            };
+            let next = next.clamp(0.0, 1.0);
+            let d = (c.eval(next) - p).hypot2();
+            let moved = (next - u).abs();
+            u = next;
+            if d < best {
+                best = d;
+                t = u;
+            }
+            if moved <= 1e-9 {
+                break;
+            }
+        }
+        err = err.max(best.sqrt());
+        if err > cutoff {
+            return err;
+        }
     }
     err
 }
 
-/// The better of the [`candidates`] over the trace points `i..=j`, with its error.
-fn best_fit(poly: &Polynomial, trace: &Trace, i: usize, j: usize, tol: f64) -> (CubicBez, f64) {
+/// The better of the [`candidates`] over the trace points `i..=j`, with its error bound
+/// (see [`cubic_error`]; above `cutoff` only says that no candidate is within `cutoff`).
+fn best_fit(
+    poly: &Polynomial,
+    trace: &Trace,
+    i: usize,
+    j: usize,
+    tol: f64,
+    cutoff: f64,
+) -> (CubicBez, f64) {
     let mut cands = candidates(trace, i, j).into_iter();
     let first = cands
         .next()
         .unwrap_or_else(|| CubicBez::new(trace.pts[i], trace.pts[i], trace.pts[j], trace.pts[j]));
-    let first_err = cubic_error(poly, &first, trace, i, j, tol);
+    let first_err = cubic_error(poly, &first, trace, i, j, tol, cutoff);
     cands.fold((first, first_err), |best, c| {
-        let err = cubic_error(poly, &c, trace, i, j, tol);
+        let err = cubic_error(poly, &c, trace, i, j, tol, cutoff.min(best.1));
         if err < best.1 {
             (c, err)
         } else {
@@ -1176,12 +1244,13 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
         // Gallop: double the reach while one cubic fits, then bisect.
         // Invariant: the fit to `lo` is acceptable (or lo = i + 1), the fit to `hi` is not.
         let mut lo = i + 1;
-        let mut best = best_fit(poly, trace, i, lo, tol);
+        // A single trace step is always accepted: its error is measured in full.
+        let mut best = best_fit(poly, trace, i, lo, tol, f64::INFINITY);
         let mut hi = None;
         let mut step = 8;
         while lo < n - 1 {
             let j = (i + step).min(n - 1);
-            let fit = best_fit(poly, trace, i, j, tol);
+            let fit = best_fit(poly, trace, i, j, tol, tol);
             if fit.1 <= tol {
                 lo = j;
                 best = fit;
@@ -1194,7 +1263,7 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
         if let Some(mut hi) = hi {
             while hi - lo > 1 {
                 let mid = (lo + hi) / 2;
-                let fit = best_fit(poly, trace, i, mid, tol);
+                let fit = best_fit(poly, trace, i, mid, tol, tol);
                 if fit.1 <= tol {
                     lo = mid;
                     best = fit;
@@ -1357,6 +1426,11 @@ mod tests {
                         * (p.y.abs() + origin.y).powi(b as i32);
                 }
                 let got = poly.eval(p);
+                let (v, g) = poly.value_and_gradient(p);
+                assert_close(v, got, 1e-15 * scale, "value_and_gradient: value");
+                let g1 = poly.gradient(p);
+                assert_close(g.x, g1.x, 1e-15 * scale, "value_and_gradient: ∂x");
+                assert_close(g.y, g1.y, 1e-15 * scale, "value_and_gradient: ∂y");
                 // The absolute expansion, evaluated term by term in absolute coordinates.
                 let absolute: f64 = poly
                     .terms()
