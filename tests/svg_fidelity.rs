@@ -308,7 +308,7 @@ const BOUNDS: &[(&str, Model, u64)] = &[
     ("suits_black_dejavusans_cap120", Model::Circle, 13),
     ("suits_black_dejavusans_cap120", Model::Conic, 21),
     ("syn_big3000_many_shapes", Model::Line, 188),
-    ("syn_big3000_many_shapes", Model::Circle, 557),
+    ("syn_big3000_many_shapes", Model::Circle, 558),
     ("syn_big3000_many_shapes", Model::Conic, 594),
     ("syn_border_touching", Model::Line, 3),
     ("syn_border_touching", Model::Circle, 3),
