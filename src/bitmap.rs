@@ -160,6 +160,39 @@ impl Mask {
         // Bits past the last pixel are never set, so whole words can be counted.
         self.bits.iter().map(|w| u64::from(w.count_ones())).sum()
     }
+
+    /// The 64 pixels from row-major index `i` on (bit `k` = pixel `i + k`), background past
+    /// the last pixel.
+    #[inline]
+    pub(crate) fn bits_at(&self, i: usize) -> u64 {
+        let (q, r) = (i / 64, i % 64);
+        let lo = self.bits.get(q).copied().unwrap_or(0) >> r;
+        if r == 0 {
+            lo
+        } else {
+            lo | (self.bits.get(q + 1).copied().unwrap_or(0) << (64 - r))
+        }
+    }
+
+    /// Sets the pixels of row-major indices `from..=to` to foreground (indices past the
+    /// last pixel are ignored).
+    pub(crate) fn set_range(&mut self, from: usize, to: usize) {
+        let n = self.bits.len() * 64;
+        let pixels = self.width as usize * self.height as usize;
+        let to = to.min(pixels.saturating_sub(1)).min(n.saturating_sub(1));
+        let mut i = from;
+        while i <= to {
+            let (q, r) = (i / 64, i % 64);
+            let k = (64 - r).min(to - i + 1);
+            let ones = if k == 64 {
+                u64::MAX
+            } else {
+                ((1u64 << k) - 1) << r
+            };
+            self.bits[q] |= ones;
+            i += k;
+        }
+    }
 }
 
 /// How the grey level threshold is chosen.
@@ -430,6 +463,45 @@ mod tests {
     use super::*;
     use image::{ImageBuffer, Luma, Rgb, Rgba};
     use proptest::prelude::*;
+
+    proptest! {
+        /// `bits_at` and `set_range` agree with pixel-by-pixel `get` and `set`.
+        #[test]
+        fn word_access_matches_pixels(
+            w in 1u32..150,
+            h in 1u32..5,
+            seed in any::<u64>(),
+            a in 0usize..800,
+            len in 0usize..200,
+        ) {
+            let mut m = Mask::new(w, h);
+            let mut s = seed | 1;
+            for y in 0..i64::from(h) {
+                for x in 0..i64::from(w) {
+                    s ^= s << 13;
+                    s ^= s >> 7;
+                    s ^= s << 17;
+                    m.set(x, y, s & 1 == 1);
+                }
+            }
+            let n = (w * h) as usize;
+            let pixel = |m: &Mask, i: usize| {
+                i < n && m.get((i % w as usize) as i64, (i / w as usize) as i64)
+            };
+            let a = a % n;
+            let word = m.bits_at(a);
+            for k in 0..64 {
+                prop_assert_eq!((word >> k) & 1 == 1, pixel(&m, a + k), "bit {} from {}", k, a);
+            }
+            let mut r = m.clone();
+            let b = a + len;
+            r.set_range(a, b);
+            for i in 0..n {
+                prop_assert_eq!(pixel(&r, i), pixel(&m, i) || (a..=b).contains(&i), "pixel {}", i);
+            }
+            prop_assert_eq!(r.count_foreground(), (0..n).filter(|&i| pixel(&r, i)).count() as u64);
+        }
+    }
 
     fn fixed(t: u8) -> LoadOptions {
         LoadOptions {

@@ -1241,11 +1241,10 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
     let mut max_err: f64 = 0.0;
     let mut i = 0;
     while i + 1 < n {
-        // Gallop: double the reach while one cubic fits, then bisect.
-        // Invariant: the fit to `lo` is acceptable (or lo = i + 1), the fit to `hi` is not.
+        // Gallop: double the reach while one cubic fits, then bisect. Invariant: the fit to `lo` is acceptable (`best`; or lo = i + 1,
+        // not yet measured), the fit to `hi` is not.
         let mut lo = i + 1;
-        // A single trace step is always accepted: its error is measured in full.
-        let mut best = best_fit(poly, trace, i, lo, tol, f64::INFINITY);
+        let mut best = None;
         let mut hi = None;
         let mut step = 8;
         while lo < n - 1 {
@@ -1253,7 +1252,7 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
             let fit = best_fit(poly, trace, i, j, tol, tol);
             if fit.1 <= tol {
                 lo = j;
-                best = fit;
+                best = Some(fit);
                 step *= 2;
             } else {
                 hi = Some(j);
@@ -1266,12 +1265,14 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
                 let fit = best_fit(poly, trace, i, mid, tol, tol);
                 if fit.1 <= tol {
                     lo = mid;
-                    best = fit;
+                    best = Some(fit);
                 } else {
                     hi = mid;
                 }
             }
         }
+        // A single trace step is always accepted, with its error measured in full.
+        let best = best.unwrap_or_else(|| best_fit(poly, trace, i, lo, tol, f64::INFINITY));
         let end = lo;
         max_err = max_err.max(best.1);
         out.push(PathCommand::Cubic(best.0.p1, best.0.p2, best.0.p3));

@@ -430,7 +430,8 @@ pub fn contour_path(
     let mut cracked = vec![false; pieces.len()];
     // The border curves do not depend on the repairs: computed once.
     let curves = Curves::new(points, pieces, basis, tolerance);
-    let mut out = build(points, pieces, &curves, &cracked);
+    let mut memo = Memo::new(pieces.len());
+    let mut out = build(points, pieces, &curves, &cracked, &mut memo);
     for _ in 0..REPAIR_ROUNDS {
         let bad = misplaced_points(contour, &out.to_bez_path());
         let mut changed = false;
@@ -451,7 +452,7 @@ pub fn contour_path(
         if !changed {
             break;
         }
-        out = build(points, pieces, &curves, &cracked);
+        out = build(points, pieces, &curves, &cracked, &mut memo);
     }
     out
 }
@@ -631,9 +632,38 @@ impl Curves {
     }
 }
 
+/// A piece's drawing between two end points: its commands and fitting error, or `None`
+/// when it falls back to its cracks.
+type Drawn = Option<(Vec<PathCommand>, f64)>;
+
+/// What one drawing of a contour computes that the next repair round can reuse: the
+/// intersection at each junction (it depends only on the two curves and the junction), and
+/// each piece's path between given end points.
+struct Memo {
+    /// Per junction, once computed: [`intersect_near`]'s answer.
+    intersections: Vec<Option<Option<Point>>>,
+    /// Per piece, the paths drawn so far, keyed by their end points.
+    paths: Vec<Vec<((Point, Point), Drawn)>>,
+}
+
+impl Memo {
+    fn new(m: usize) -> Memo {
+        Memo {
+            intersections: vec![None; m],
+            paths: vec![Vec::new(); m],
+        }
+    }
+}
+
 /// One drawing of a contour's pieces; `cracked[j]` draws the end pixel of piece `j` and the
 /// start pixel of the next one along their cracks (junction `j`).
-fn build(points: &[Pixel], pieces: &[Piece], curves: &Curves, cracked: &[bool]) -> ContourPath {
+fn build(
+    points: &[Pixel],
+    pieces: &[Piece],
+    curves: &Curves,
+    cracked: &[bool],
+    memo: &mut Memo,
+) -> ContourPath {
     let mut out = ContourPath::default();
     let mut b = Builder::new();
     let m = pieces.len();
@@ -678,7 +708,10 @@ fn build(points: &[Pixel], pieces: &[Piece], curves: &Curves, cracked: &[bool]) 
             } else {
                 if let (Some(pa), Some(pb)) = (&polys[j], &polys[k]) {
                     if j != k {
-                        if let Some(x) = intersect_near(pa, pb, mid, JUNCTION_MAX_DISTANCE) {
+                        let x = *memo.intersections[j].get_or_insert_with(|| {
+                            intersect_near(pa, pb, mid, JUNCTION_MAX_DISTANCE)
+                        });
+                        if let Some(x) = x {
                             ends[j] = x;
                             starts[k] = x;
                             out.joins.intersection += 1;
@@ -726,13 +759,22 @@ fn build(points: &[Pixel], pieces: &[Piece], curves: &Curves, cracked: &[bool]) 
         let (from, to) = (starts[k], ends[k]);
         b.goto(from);
         if !(m > 1 || head || tail) || (to - from).hypot() > 1e-9 {
-            let guide: Vec<Point> = points[piece.first..=piece.last]
-                .iter()
-                .map(|&p| centre(p))
-                .collect();
-            match level_curve_path(poly, from, to, &guide, tolerances[k])
-                .filter(|(cmds, _)| stays_near(from, cmds, &points[piece.first..=piece.last]))
-            {
+            let known = memo.paths[k].iter().find(|(ends, _)| *ends == (from, to));
+            let drawn = match known {
+                Some((_, drawn)) => drawn.clone(),
+                None => {
+                    let guide: Vec<Point> = points[piece.first..=piece.last]
+                        .iter()
+                        .map(|&p| centre(p))
+                        .collect();
+                    let drawn = level_curve_path(poly, from, to, &guide, tolerances[k]).filter(
+                        |(cmds, _)| stays_near(from, cmds, &points[piece.first..=piece.last]),
+                    );
+                    memo.paths[k].push(((from, to), drawn.clone()));
+                    drawn
+                }
+            };
+            match drawn {
                 Some((cmds, err)) => {
                     out.max_fit_error = out.max_fit_error.max(err);
                     b.extend(cmds);
