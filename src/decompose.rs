@@ -23,10 +23,9 @@
 
 use crate::contour::Contour;
 use crate::model::{Basis, Model};
-use crate::pixel::Pixel;
+use crate::pixel::{Pixel, PixelMap, PixelSet};
 use crate::recognize::{Certificate, Outcome, Recognizer, Side, Stats};
 use rayon::prelude::*;
-use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 /// One piece of a contour: indices `first..=last` of its points and the layer describing it.
@@ -126,8 +125,8 @@ pub fn piece_outliers(
     if last >= points.len() || last < first + 2 {
         return (right, left);
     }
-    let piece: std::collections::HashSet<Pixel> = points[first..=last].iter().copied().collect();
-    let (mut seen_right, mut seen_left) = (HashSet::new(), HashSet::new());
+    let piece: PixelSet = points[first..=last].iter().copied().collect();
+    let (mut seen_right, mut seen_left) = (PixelSet::default(), PixelSet::default());
     for k in first + 1..last {
         let Some(sides) = neighbour_sides(points[k - 1], points[k], points[k + 1]) else {
             continue;
@@ -150,9 +149,9 @@ pub fn piece_outliers(
 /// Per-piece bookkeeping of the greedy: multiplicities of piece pixels and of outliers.
 #[derive(Default)]
 struct Growth {
-    in_piece: HashMap<Pixel, u32>,
+    in_piece: PixelMap<u32>,
     /// Outlier → (times RIGHT, times LEFT).
-    outliers: HashMap<Pixel, (u32, u32)>,
+    outliers: PixelMap<(u32, u32)>,
 }
 
 fn xy(p: Pixel) -> [i64; 2] {

@@ -56,7 +56,7 @@ use crate::decompose::OutlierRule;
 use crate::decompose::{neighbour_sides, Decomposition, Piece};
 use crate::level::border_polynomial;
 use crate::model::Basis;
-use crate::pixel::Pixel;
+use crate::pixel::{Pixel, PixelSet};
 use kurbo::{BezPath, PathEl, Point};
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -462,7 +462,7 @@ pub fn contour_path(
 fn misplaced_points(contour: &Contour, path: &BezPath) -> Vec<usize> {
     let points = &contour.points;
     let n = points.len();
-    let on_contour: std::collections::HashSet<Pixel> = points.iter().copied().collect();
+    let on_contour: PixelSet = points.iter().copied().collect();
     let index = RowWinding::new(path);
     let mut bad = Vec::new();
     // Foreground has winding ≠ 0 inside an outer border and 0 inside a hole border.
