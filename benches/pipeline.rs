@@ -1,11 +1,16 @@
 //! Speed of every stage (loading, tracing, decomposition per model, SVG export, fidelity
 //! rasterization) on a small glyph, a ~1000×1000 page of glyphs and a 3000×3000 image with
-//! many shapes. Compare stages and images as ratios within one run.
+//! many shapes; and decomposition of digital disc borders of 10³ to 10⁶ pixels on one
+//! thread (throughput in contour pixels: flat time per pixel shows linear cost). Compare
+//! stages and images as ratios within one run.
+
+#[path = "../examples/common/disc.rs"]
+mod disc;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use layertrace::{
-    compare, decompose, load_path, rasterize_svg, svg_document, trace, Convention, LoadOptions,
-    Model, OutlierRule, SvgOptions,
+    compare, decompose, load_path, rasterize_svg, svg_document, trace, Contour, Convention,
+    LoadOptions, Model, OutlierRule, SvgOptions,
 };
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -89,5 +94,33 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// Decomposition of one disc border per size and model, single thread.
+fn discs(c: &mut Criterion) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("thread pool");
+    let mut g = c.benchmark_group("disc_border");
+    g.sample_size(10);
+    for r in [180.0, 1800.0, 18_000.0, 180_000.0] {
+        let points = disc::disc_border(r);
+        g.throughput(Throughput::Elements(points.len() as u64));
+        for model in [Model::Line, Model::Circle, Model::Conic] {
+            let contours = vec![Contour {
+                points: points.clone(),
+                hole: false,
+                closed: true,
+            }];
+            g.bench_function(BenchmarkId::new(model.to_string(), points.len()), |b| {
+                b.iter(|| {
+                    let c = contours.clone();
+                    black_box(pool.install(|| decompose(c, model, OutlierRule::NotInPiece)))
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, discs);
 criterion_main!(benches);
