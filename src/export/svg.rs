@@ -484,6 +484,46 @@ fn misplaced_points(contour: &Contour, path: &BezPath) -> Vec<usize> {
     bad
 }
 
+/// The `x` where the `y`-monotone part `t0..t1` of `seg` (from height `ya`) crosses the
+/// height `yc`: the Illinois variant of regula falsi, which keeps the root bracketed and
+/// converges superlinearly (a few evaluations where bisection takes fifty).
+fn crossing_x(seg: kurbo::PathSeg, t0: f64, t1: f64, ya: f64, yc: f64) -> f64 {
+    use kurbo::ParamCurve;
+    let (mut a, mut b) = (t0, t1);
+    let (mut fa, mut fb) = (ya - yc, seg.eval(t1).y - yc);
+    let mut side = 0;
+    for _ in 0..60 {
+        if fa == fb || (b - a).abs() <= 1e-12 {
+            break;
+        }
+        let t = ((a * fb - b * fa) / (fb - fa)).clamp(a.min(b), a.max(b));
+        let ft = seg.eval(t).y - yc;
+        if ft == 0.0 {
+            return seg.eval(t).x;
+        }
+        if (ft < 0.0) == (fa < 0.0) {
+            a = t;
+            fa = ft;
+            if side == -1 {
+                fb /= 2.0;
+            }
+            side = -1;
+        } else {
+            b = t;
+            fb = ft;
+            if side == 1 {
+                fa /= 2.0;
+            }
+            side = 1;
+        }
+        if fa.abs().min(fb.abs()) <= 1e-12 {
+            break;
+        }
+    }
+    let t = if fa.abs() <= fb.abs() { a } else { b };
+    seg.eval(t).x
+}
+
 /// Winding numbers at pixel centres, from the crossings of the path with each row's
 /// centre line `y = r + ½`, computed once per row: the winding number at `(x, r + ½)` is
 /// the sum of the directions (±1) of the crossings left of `x`.
@@ -543,21 +583,12 @@ impl RowWinding {
                     if !(ymin <= yc && yc < ymax) {
                         continue;
                     }
-                    // Bisection on the monotone piece: y(a) strictly before the line in
-                    // the direction of travel, y(b) on it or past it.
-                    let (mut a, mut b) = (t0, t1);
-                    for _ in 0..52 {
-                        let m = 0.5 * (a + b);
-                        if m <= a || m >= b {
-                            break;
+                    let x = match seg {
+                        kurbo::PathSeg::Line(l) => {
+                            l.p0.x + (l.p1.x - l.p0.x) * ((yc - l.p0.y) / (l.p1.y - l.p0.y))
                         }
-                        if (seg.eval(m).y < yc) == (ya < yb) {
-                            a = m;
-                        } else {
-                            b = m;
-                        }
-                    }
-                    let x = seg.eval(0.5 * (a + b)).x;
+                        _ => crossing_x(*seg, t0, t1, ya, yc),
+                    };
                     rows[(r - first_row) as usize].push((x, dir));
                 }
             }
