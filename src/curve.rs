@@ -1185,7 +1185,6 @@ fn cubic_error(
     tol: f64,
     cutoff: f64,
 ) -> f64 {
-    use kurbo::ParamCurveDeriv;
     let mut err: f64 = 0.0;
     // 23 samples at k/24, the coarse ones first (a bad fit is usually worst mid-way, so
     // the cutoff is met early).
@@ -1203,34 +1202,43 @@ fn cubic_error(
         }
     }
     // Trace points, at most about 64 of them, evenly spread, in order along the cubic.
-    let d1 = c.deriv();
-    let d2 = d1.deriv();
+    // Power form B(u) = ((c3 u + c2) u + c1) u + c0, for cheap B, B′ and B″.
+    let (p0, p1, p2, p3) = (
+        c.p0.to_vec2(),
+        c.p1.to_vec2(),
+        c.p2.to_vec2(),
+        c.p3.to_vec2(),
+    );
+    let c1 = (p1 - p0) * 3.0;
+    let c2 = (p2 - p1 * 2.0 + p0) * 3.0;
+    let c3 = p3 - p0 + (p1 - p2) * 3.0;
     let stride = ((j - i) / 64).max(1);
     let mut t = 0.0;
     for &p in trace.pts[i + 1..j].iter().step_by(stride) {
-        let mut best = (c.eval(t) - p).hypot2();
-        let mut u = t;
+        let q = p.to_vec2() - p0;
+        let mut best = f64::INFINITY;
+        let mut u: f64 = t;
         for _ in 0..8 {
-            let r = c.eval(u) - p;
-            let v1 = d1.eval(u).to_vec2();
+            let r = ((c3 * u + c2) * u + c1) * u - q;
+            let d = r.hypot2();
+            if d < best {
+                best = d;
+                t = u;
+            }
+            let v1 = (c3 * (3.0 * u) + c2 * 2.0) * u + c1;
+            let v2 = c3 * (6.0 * u) + c2 * 2.0;
             let g = r.dot(v1);
-            let h = v1.hypot2() + r.dot(d2.eval(u).to_vec2());
+            let h = v1.hypot2() + r.dot(v2);
             let next = if h > 0.0 {
                 u - g / h
             } else {
                 u - g.signum() * 0.05
             };
             let next = next.clamp(0.0, 1.0);
-            let d = (c.eval(next) - p).hypot2();
-            let moved = (next - u).abs();
-            u = next;
-            if d < best {
-                best = d;
-                t = u;
-            }
-            if moved <= 1e-9 {
+            if (next - u).abs() <= 1e-9 {
                 break;
             }
+            u = next;
         }
         err = err.max(best.sqrt());
         if err > cutoff {
