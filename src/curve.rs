@@ -237,6 +237,16 @@ impl Polynomial {
 
     /// The value and the gradient at `p` together (one evaluation of the powers of `p`).
     pub fn value_and_gradient(&self, p: Point) -> (f64, Vec2) {
+        if self.top <= 2 {
+            // Lines and conics (every border curve of those models), written out.
+            let d = p - self.origin;
+            let (x, y) = (d.x, d.y);
+            let c = &self.local;
+            let v = c[0] + x * (c[1] + c[3] * x + c[4] * y) + y * (c[2] + c[5] * y);
+            let gx = c[1] + 2.0 * c[3] * x + c[4] * y;
+            let gy = c[2] + c[4] * x + 2.0 * c[5] * y;
+            return (v, Vec2::new(gx, gy));
+        }
         let (xp, yp) = Self::powers((p - self.origin).to_point());
         let (mut v, mut gx, mut gy) = (self.local[0], 0.0, 0.0);
         for k in 1..=self.top {
