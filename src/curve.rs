@@ -1294,13 +1294,25 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
     let mut max_err: f64 = 0.0;
     let mut i = 0;
     while i + 1 < n {
-        // Gallop: double the reach while one cubic fits, then bisect. Invariant: the fit to `lo` is acceptable (`best`; or lo = i + 1,
-        // not yet measured), the fit to `hi` is not.
+        // Gallop: double the reach while one cubic fits, then bisect. Invariant: the fit to
+        // `lo` is acceptable (`best`; or lo = i + 1, not yet measured), the fit to `hi` is
+        // not.
         let mut lo = i + 1;
         let mut best = None;
         let mut hi = None;
         let mut step = 8;
-        while lo < n - 1 {
+        // The rest of the trace first: one cubic often suffices for a whole piece, and a
+        // failing try stops at the cutoff.
+        if n - 1 > i + step {
+            let fit = best_fit(poly, trace, i, n - 1, tol, tol);
+            if fit.1 <= tol {
+                lo = n - 1;
+                best = Some(fit);
+            } else {
+                hi = Some(n - 1);
+            }
+        }
+        while lo < n - 1 && hi.is_none_or(|h| i + step < h) {
             let j = (i + step).min(n - 1);
             let fit = best_fit(poly, trace, i, j, tol, tol);
             if fit.1 <= tol {
