@@ -155,7 +155,93 @@ pub(crate) fn barycentric_exact(points: &[Vec<i64>]) -> Option<Vec<BigRational>>
 /// The barycentric coordinates of the origin with respect to affinely independent `points`
 /// whose affine hull holds it, whatever their signs (a negative one names a vertex to drop).
 /// Returns `None` if the points are affinely dependent or the origin is off their hull.
+///
+/// Fraction-free throughout: Bareiss elimination of `[p_1 … p_k; 1 … 1] λ = [0; 1]`, then
+/// the back substitution of the integers `X_r = λ_r·D` (`D` the last pivot, the determinant
+/// of the eliminated `k × k` system; `m_rr X_r = D m_rk − Σ_{c>r} m_rc X_c` divides exactly),
+/// and one reduction per weight `X_r / D`. In overflow-checked `i128` first, in big integers
+/// when that overflows.
 pub(crate) fn barycentric_signed(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
+    match barycentric_i128(points) {
+        Ok(found) => found,
+        Err(Overflow) => barycentric_big(points),
+    }
+}
+
+/// An `i128` operation overflowed.
+struct Overflow;
+
+/// [`barycentric_signed`] in `i128`.
+fn barycentric_i128(points: &[Vec<i64>]) -> Result<Option<Vec<BigRational>>, Overflow> {
+    let k = points.len();
+    let Some(n) = points.first().map(Vec::len) else {
+        return Ok(None);
+    };
+    let rows = n + 1;
+    let mut m: Vec<i128> = Vec::with_capacity(rows * (k + 1));
+    for r in 0..rows {
+        for c in 0..k {
+            m.push(if r < n { i128::from(points[c][r]) } else { 1 });
+        }
+        m.push(i128::from(r == n));
+    }
+    let w = k + 1;
+    let mut prev: i128 = 1;
+    for c in 0..k {
+        let Some(p) = (c..rows).find(|&r| m[r * w + c] != 0) else {
+            return Ok(None); // dependent columns
+        };
+        if p != c {
+            for cc in 0..w {
+                m.swap(c * w + cc, p * w + cc);
+            }
+        }
+        let pivot = m[c * w + c];
+        for r in c + 1..rows {
+            let lead = m[r * w + c];
+            for cc in c + 1..w {
+                let v = pivot
+                    .checked_mul(m[r * w + cc])
+                    .and_then(|x| x.checked_sub(lead.checked_mul(m[c * w + cc])?))
+                    .ok_or(Overflow)?;
+                m[r * w + cc] = v / prev;
+            }
+            m[r * w + c] = 0;
+        }
+        prev = pivot;
+    }
+    if (k..rows).any(|r| m[r * w + k] != 0) {
+        return Ok(None);
+    }
+    let d = m[(k - 1) * w + (k - 1)];
+    let mut x = vec![0i128; k];
+    for r in (0..k).rev() {
+        let mut s = d.checked_mul(m[r * w + k]).ok_or(Overflow)?;
+        for c in r + 1..k {
+            s = m[r * w + c]
+                .checked_mul(x[c])
+                .and_then(|t| s.checked_sub(t))
+                .ok_or(Overflow)?;
+        }
+        x[r] = s / m[r * w + r];
+    }
+    Ok(Some(
+        x.into_iter()
+            .map(|v| {
+                let g = v.gcd(&d);
+                let (num, den) = if d < 0 {
+                    (-v / g, -d / g)
+                } else {
+                    (v / g, d / g)
+                };
+                BigRational::new_raw(BigInt::from(num), BigInt::from(den))
+            })
+            .collect(),
+    ))
+}
+
+/// [`barycentric_signed`] in big integers.
+fn barycentric_big(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
     let k = points.len();
     let n = points.first()?.len();
     let rows = n + 1;
@@ -185,15 +271,20 @@ pub(crate) fn barycentric_signed(points: &[Vec<i64>]) -> Option<Vec<BigRational>
     if (k..rows).any(|r| !m[r][k].is_zero()) {
         return None;
     }
-    let mut x: Vec<BigRational> = vec![<BigRational as Zero>::zero(); k];
+    let d = m[k - 1][k - 1].clone();
+    let mut x: Vec<BigInt> = vec![BigInt::zero(); k];
     for r in (0..k).rev() {
-        let mut s = BigRational::from_integer(m[r][k].clone());
+        let mut s = &d * &m[r][k];
         for c in r + 1..k {
-            s -= BigRational::from_integer(m[r][c].clone()) * &x[c];
+            s -= &m[r][c] * &x[c];
         }
-        x[r] = s / BigRational::from_integer(m[r][r].clone());
+        x[r] = s / &m[r][r];
     }
-    Some(x)
+    Some(
+        x.into_iter()
+            .map(|v| BigRational::new(v, d.clone()))
+            .collect(),
+    )
 }
 
 /// Decides exactly whether the origin lies in the convex hull of `points`; returns the
@@ -350,4 +441,66 @@ fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt]) -> ExactDecision {
         }
     }
     ExactDecision::Undecided
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// `Σλ = 1` and `Σ λ_i p_i = 0`, exactly.
+    fn solves(points: &[Vec<i64>], w: &[BigRational]) -> bool {
+        let one = BigRational::from_integer(BigInt::from(1));
+        let sum = w.iter().fold(<BigRational as Zero>::zero(), |s, x| s + x);
+        let n = points[0].len();
+        sum == one
+            && (0..n).all(|r| {
+                w.iter()
+                    .zip(points)
+                    .fold(<BigRational as Zero>::zero(), |s, (x, p)| {
+                        s + x * BigInt::from(p[r])
+                    })
+                    .is_zero()
+            })
+    }
+
+    proptest! {
+        /// The `i128` path and the big-integer path give the same answer, and it solves the
+        /// system; some instances overflow `i128` (large coordinates) and take the big path.
+        #[test]
+        fn barycentric_paths_agree(
+            n in 1usize..7,
+            k in 1usize..8,
+            big in any::<bool>(),
+            seed in any::<u64>(),
+        ) {
+            let mut s = seed | 1;
+            let mut next = move || {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                s
+            };
+            let range: i64 = if big { 1 << 40 } else { 9 };
+            let k = k.min(n + 1);
+            // Points whose affine hull holds the origin: the last is minus a positive
+            // combination of the others.
+            let mut points: Vec<Vec<i64>> = (0..k - 1)
+                .map(|_| (0..n).map(|_| (next() % (2 * range as u64 + 1)) as i64 - range).collect())
+                .collect();
+            let weights: Vec<i64> = (0..k - 1).map(|_| (next() % 4) as i64 + 1).collect();
+            let last: Vec<i64> = (0..n)
+                .map(|r| -points.iter().zip(&weights).map(|(p, w)| p[r] * w).sum::<i64>())
+                .collect();
+            points.push(last);
+            let fast = barycentric_i128(&points).unwrap_or_default();
+            let slow = barycentric_big(&points);
+            if let Ok(found) = barycentric_i128(&points) {
+                prop_assert_eq!(&found, &slow);
+            }
+            if let Some(w) = fast.as_ref().or(slow.as_ref()) {
+                prop_assert!(solves(&points, w));
+            }
+        }
+    }
 }
