@@ -831,6 +831,30 @@ fn number(v: f64, precision: usize, s: &mut String) {
         s.push('0');
         return;
     }
+    // Fast path: v·10^p rounded to an integer that f64 holds exactly (the same digits as
+    // `format!` except, rarely, for a value within an ulp of a rounding tie).
+    if precision <= 9 {
+        let scale = 10f64.powi(precision as i32);
+        let n = (v * scale).round_ties_even();
+        if n.abs() < 9.0e15 {
+            let n = n as i64;
+            if n < 0 {
+                s.push('-');
+            }
+            let (scale, n) = (scale as u64, n.unsigned_abs());
+            let (int, mut frac) = (n / scale, n % scale);
+            let _ = write!(s, "{int}");
+            if frac != 0 {
+                let mut digits = precision;
+                while frac % 10 == 0 {
+                    frac /= 10;
+                    digits -= 1;
+                }
+                let _ = write!(s, ".{frac:0digits$}");
+            }
+            return;
+        }
+    }
     let mut t = format!("{v:.precision$}");
     if t.contains('.') {
         while t.ends_with('0') {
@@ -1034,6 +1058,34 @@ mod tests {
         assert_eq!(num(12.34567, 3), "12.346");
         assert_eq!(num(12.34567, 0), "12");
         assert_eq!(num(f64::NAN, 3), "0");
+        assert_eq!(num(-3.25, 1), "-3.2");
+        assert_eq!(num(-0.05, 3), "-0.05");
+        assert_eq!(
+            num(1e300, 3),
+            format!("{:.3}", 1e300).trim_end_matches(".000")
+        );
+        // The integer fast path writes what `format!` writes (away from rounding ties).
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..20_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let v = ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 20_000.0;
+            for p in [0, 1, 3, 6] {
+                let frac = (v * 10f64.powi(p as i32)).abs().fract();
+                if (frac - 0.5).abs() < 1e-6 {
+                    continue;
+                }
+                let mut want = format!("{v:.p$}");
+                if want.contains('.') {
+                    want = want.trim_end_matches('0').trim_end_matches('.').to_string();
+                }
+                if want == "-0" {
+                    want = "0".into();
+                }
+                assert_eq!(num(v, p), want, "{v} at precision {p}");
+            }
+        }
         assert_eq!(xml_escape("a\"<b>&'"), "a&quot;&lt;b&gt;&amp;&apos;");
     }
 
