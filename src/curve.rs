@@ -664,6 +664,30 @@ fn newton_to_curve(poly: &Polynomial, p: Point, max_distance: f64) -> Option<Poi
 /// Returns `None` where [`newton_to_curve`] would fail (leaving the disc of radius
 /// `max_distance`, a vanishing gradient, no convergence).
 fn distance_bound(poly: &Polynomial, p: Point, max_distance: f64) -> Option<f64> {
+    if poly.top <= 2 {
+        // A conic: f along the gradient line is a quadratic in the distance travelled, so
+        // the point of the curve on that line is found in closed form. With w the unit
+        // vector down the gradient from p (towards f = 0), f(p + t w)·sign(f(p)) =
+        // |f| − t |∇f| + t² s wᵀHw / 2 (s = sign f(p), H the constant Hessian); its
+        // smallest positive root is 2|f| / (|∇f| + √(|∇f|² − 2 s wᵀHw |f|)).
+        let (v, g) = poly.value_and_gradient(p);
+        if v == 0.0 {
+            return Some(0.0);
+        }
+        let gn = g.hypot();
+        if gn > 0.0 && gn.is_finite() && v.is_finite() {
+            let u = g / gn;
+            let c = &poly.local;
+            let uhu = 2.0 * (c[3] * u.x * u.x + c[4] * u.x * u.y + c[5] * u.y * u.y);
+            let a = v.abs();
+            let disc = gn * gn - 2.0 * v.signum() * uhu * a;
+            if disc >= 0.0 {
+                let t = 2.0 * a / (gn + disc.sqrt());
+                return (t <= max_distance).then_some(t);
+            }
+        }
+        // No point of the curve on that line (or a vanishing gradient): iterate.
+    }
     let mut q = p;
     for _ in 0..64 {
         let (v, g) = poly.value_and_gradient(q);
@@ -2387,6 +2411,56 @@ mod tests {
     }
 
     // ---------------------------------------------------------------- intersections
+
+    /// The closed-form bound on conics: a point of the curve (so at least the distance to
+    /// the curve) and, for points near the curve, within second order of that distance.
+    #[test]
+    fn conic_distance_bound() {
+        let mut rng = Rng(0x0dd_b1a5_ed5e_ed01);
+        let mut checked = 0;
+        for _ in 0..300 {
+            let k = Conic {
+                a: rng.range(-1.0, 1.0),
+                b: rng.range(-1.0, 1.0),
+                c: rng.range(-1.0, 1.0),
+                d: rng.range(-20.0, 20.0),
+                e: rng.range(-20.0, 20.0),
+                f: rng.range(-100.0, 100.0),
+            };
+            let poly = Polynomial::from(k);
+            for i in 0..10 {
+                let mut p = Point::new(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
+                if i % 2 == 1 {
+                    // Near the curve: a point of it moved along the normal.
+                    let Some(q) = project(&poly, p, 10.0) else {
+                        continue;
+                    };
+                    let n = poly.gradient(q).normalize();
+                    p = q + n * rng.range(-0.05, 0.05);
+                }
+                let Some(on) = project(&poly, p, 3.0) else {
+                    continue;
+                };
+                let d = (on - p).hypot();
+                let Some(bound) = distance_bound(&poly, p, 10.0) else {
+                    continue;
+                };
+                assert!(
+                    bound >= d - 1e-9,
+                    "bound {bound} below the distance {d} at {p:?}"
+                );
+                if d < 0.05 {
+                    checked += 1;
+                    assert_le(
+                        bound - d,
+                        1e-3,
+                        "bound close to the distance near the curve",
+                    );
+                }
+            }
+        }
+        assert!(checked > 20, "only {checked} points near the curves");
+    }
 
     #[test]
     fn intersections_and_projection() {
