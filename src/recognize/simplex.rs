@@ -35,6 +35,32 @@ pub(crate) struct Simplex<T> {
     pub vertices: Vec<Vertex<T>>,
     /// Barycentric weights, positive, summing to one.
     pub weights: Vec<T>,
+    /// Scratch space of the minor cycle, kept so that `f64` runs do not allocate.
+    work: Work<T>,
+}
+
+/// The minor cycle's scratch: flat row-major matrices, reused between calls.
+#[derive(Clone, Debug)]
+struct Work<T> {
+    /// The edges `e_i = w_i − w_0`, `(k−1) × n`.
+    edges: Vec<T>,
+    /// The augmented system `[EᵀE | −Eᵀw_0]`, `(k−1) × k`.
+    system: Vec<T>,
+    /// Its solution `t`.
+    t: Vec<T>,
+    /// The affine weights `μ`.
+    mu: Vec<T>,
+}
+
+impl<T> Default for Work<T> {
+    fn default() -> Self {
+        Work {
+            edges: Vec::new(),
+            system: Vec::new(),
+            t: Vec::new(),
+            mu: Vec::new(),
+        }
+    }
 }
 
 /// The affine system of step 1 is singular: the vertices are (numerically) affinely dependent.
@@ -46,6 +72,7 @@ impl<T: Scalar> Default for Simplex<T> {
         Simplex {
             vertices: Vec::new(),
             weights: Vec::new(),
+            work: Work::default(),
         }
     }
 }
@@ -107,15 +134,18 @@ impl<T: Scalar> Simplex<T> {
         let tiny = T::tolerance(&T::one(), eps);
         // Each pass removes at least one vertex, so at most len() passes.
         for _ in 0..=self.vertices.len() {
-            let mu = affine_min_norm_weights(&self.vertices, eps).ok_or(Degenerate)?;
+            if !affine_min_norm_into(&self.vertices, eps, &mut self.work) {
+                return Err(Degenerate);
+            }
+            let mu = &mut self.work.mu;
             if mu.iter().all(|m| *m > tiny) {
-                self.weights = mu;
+                std::mem::swap(&mut self.weights, mu);
                 return Ok(());
             }
             // Walk from λ towards μ until a weight reaches zero.
             let mut theta = T::one();
             let mut leaving = None;
-            for (i, (l, m)) in self.weights.iter().zip(&mu).enumerate() {
+            for (i, (l, m)) in self.weights.iter().zip(mu.iter()).enumerate() {
                 if *m <= tiny {
                     let denom = l.clone() - m.clone();
                     let t = if denom > T::zero() {
@@ -130,19 +160,16 @@ impl<T: Scalar> Simplex<T> {
                 }
             }
             let keep = T::one() - theta.clone();
-            let mut next: Vec<T> = self
-                .weights
-                .iter()
-                .zip(&mu)
-                .map(|(l, m)| keep.clone() * l.clone() + theta.clone() * m.clone())
-                .collect();
+            for (l, m) in self.weights.iter_mut().zip(mu.iter()) {
+                *l = keep.clone() * l.clone() + theta.clone() * m.clone();
+            }
             if let Some(i) = leaving {
-                next[i] = T::zero();
+                self.weights[i] = T::zero();
             }
             let mut i = 0;
-            while i < next.len() {
-                if next[i] <= tiny {
-                    next.remove(i);
+            while i < self.weights.len() {
+                if self.weights[i] <= tiny {
+                    self.weights.remove(i);
                     self.vertices.remove(i);
                 } else {
                     i += 1;
@@ -152,105 +179,113 @@ impl<T: Scalar> Simplex<T> {
                 return Err(Degenerate);
             }
             // Renormalize (exact numbers already sum to one; floats drift).
-            let sum = next.iter().fold(T::zero(), |s, l| s + l.clone());
-            self.weights = next.into_iter().map(|l| l / sum.clone()).collect();
+            let sum = self.weights.iter().fold(T::zero(), |s, l| s + l.clone());
+            for l in self.weights.iter_mut() {
+                *l = l.clone() / sum.clone();
+            }
         }
         Err(Degenerate)
     }
 }
 
 /// The weights `μ` (summing to one) of the point of the affine hull of `vertices` nearest to
-/// the origin. Returns `None` if the vertices are (numerically) affinely dependent.
-pub(crate) fn affine_min_norm_weights<T: Scalar>(
-    vertices: &[Vertex<T>],
-    eps: f64,
-) -> Option<Vec<T>> {
+/// the origin, into `work.mu`; false if the vertices are (numerically) affinely dependent.
+///
+/// Reduced form, better conditioned than the bordered Gram system: with the edges
+/// `e_i = w_i − w_0`, minimize `‖w_0 + Σ t_i e_i‖²`, i.e. `(EᵀE) t = −Eᵀ w_0`, and
+/// `μ_0 = 1 − Σ t_i`, `μ_i = t_i`.
+fn affine_min_norm_into<T: Scalar>(vertices: &[Vertex<T>], eps: f64, work: &mut Work<T>) -> bool {
     let k = vertices.len();
+    work.mu.clear();
     if k == 0 {
-        return None;
+        return false;
     }
     if k == 1 {
-        return Some(vec![T::one()]);
+        work.mu.push(T::one());
+        return true;
     }
-    // Reduced form, better conditioned than the bordered Gram system: with the edges
-    // e_i = w_i − w_0, minimize ‖w_0 + Σ t_i e_i‖², i.e. (EᵀE) t = −Eᵀ w_0, μ_0 = 1 − Σ t_i.
     let w0 = &vertices[0].point;
-    let edges: Vec<Vec<T>> = vertices[1..]
-        .iter()
-        .map(|v| {
-            v.point
-                .iter()
-                .zip(w0)
-                .map(|(a, b)| a.clone() - b.clone())
-                .collect()
-        })
-        .collect();
+    let n = w0.len();
+    work.edges.clear();
+    for v in &vertices[1..] {
+        work.edges
+            .extend(v.point.iter().zip(w0).map(|(a, b)| a.clone() - b.clone()));
+    }
     let m = k - 1;
     let dot = |a: &[T], b: &[T]| {
         a.iter()
             .zip(b)
             .fold(T::zero(), |s, (x, y)| s + x.clone() * y.clone())
     };
-    // Augmented matrix [EᵀE | −Eᵀw0].
-    let mut a: Vec<Vec<T>> = (0..m)
-        .map(|i| {
-            let mut row: Vec<T> = (0..m).map(|j| dot(&edges[i], &edges[j])).collect();
-            row.push(-dot(&edges[i], w0));
-            row
-        })
-        .collect();
-    let scale = a.iter().enumerate().fold(
-        T::zero(),
-        |s, (i, r)| if r[i] > s { r[i].clone() } else { s },
-    );
-    let pivot_tol = T::tolerance(&scale, eps);
-    let t = solve_in_place(&mut a, &pivot_tol)?;
-    let sum_t = t.iter().fold(T::zero(), |s, x| s + x.clone());
-    let mut mu = Vec::with_capacity(k);
-    mu.push(T::one() - sum_t);
-    mu.extend(t);
-    if mu.iter().all(|x| x.is_finite()) {
-        Some(mu)
-    } else {
-        None
+    let edges = &work.edges;
+    let edge = |i: usize| &edges[i * n..(i + 1) * n];
+    // Augmented matrix [EᵀE | −Eᵀw0], m × (m+1), row-major.
+    work.system.clear();
+    for i in 0..m {
+        for j in 0..m {
+            work.system.push(dot(edge(i), edge(j)));
+        }
+        work.system.push(-dot(edge(i), w0));
     }
+    let scale = (0..m).fold(T::zero(), |s, i| {
+        let d = &work.system[i * (m + 1) + i];
+        if *d > s {
+            d.clone()
+        } else {
+            s
+        }
+    });
+    let pivot_tol = T::tolerance(&scale, eps);
+    if !solve_in_place(&mut work.system, m, &pivot_tol, &mut work.t) {
+        return false;
+    }
+    let sum_t = work.t.iter().fold(T::zero(), |s, x| s + x.clone());
+    work.mu.push(T::one() - sum_t);
+    work.mu.extend(work.t.iter().cloned());
+    work.mu.iter().all(|x| x.is_finite())
 }
 
-/// Gaussian elimination with partial pivoting on an augmented `m × (m+1)` matrix.
-/// Returns `None` when a pivot is not larger than `pivot_tol` (singular).
-fn solve_in_place<T: Scalar>(a: &mut [Vec<T>], pivot_tol: &T) -> Option<Vec<T>> {
-    let m = a.len();
+/// Gaussian elimination with partial pivoting on the row-major augmented `m × (m+1)`
+/// matrix `a`; the solution goes to `x`. False when a pivot is not larger than `pivot_tol`
+/// (singular).
+fn solve_in_place<T: Scalar>(a: &mut [T], m: usize, pivot_tol: &T, x: &mut Vec<T>) -> bool {
+    let w = m + 1;
     for col in 0..m {
         let mut best = col;
         for r in col + 1..m {
-            if a[r][col].abs() > a[best][col].abs() {
+            if a[r * w + col].abs() > a[best * w + col].abs() {
                 best = r;
             }
         }
-        if a[best][col].abs() <= *pivot_tol || a[best][col] == T::zero() {
-            return None;
+        if a[best * w + col].abs() <= *pivot_tol || a[best * w + col] == T::zero() {
+            return false;
         }
-        a.swap(col, best);
+        if best != col {
+            for c in 0..w {
+                a.swap(col * w + c, best * w + c);
+            }
+        }
         for r in col + 1..m {
-            if a[r][col] == T::zero() {
+            if a[r * w + col] == T::zero() {
                 continue;
             }
-            let f = a[r][col].clone() / a[col][col].clone();
-            for c in col..=m {
-                let v = a[col][c].clone();
-                a[r][c] = a[r][c].clone() - f.clone() * v;
+            let f = a[r * w + col].clone() / a[col * w + col].clone();
+            for c in col..w {
+                let v = a[col * w + c].clone();
+                a[r * w + c] = a[r * w + c].clone() - f.clone() * v;
             }
         }
     }
-    let mut x = vec![T::zero(); m];
+    x.clear();
+    x.resize(m, T::zero());
     for r in (0..m).rev() {
-        let mut s = a[r][m].clone();
+        let mut s = a[r * w + m].clone();
         for c in r + 1..m {
-            s = s - a[r][c].clone() * x[c].clone();
+            s = s - a[r * w + c].clone() * x[c].clone();
         }
-        x[r] = s / a[r][r].clone();
+        x[r] = s / a[r * w + r].clone();
     }
-    Some(x)
+    true
 }
 
 #[cfg(test)]
