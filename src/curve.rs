@@ -1259,6 +1259,9 @@ fn cubic_error(
                 best = d;
                 t = u;
             }
+            if d <= err * err {
+                break; // this point cannot raise the maximum
+            }
             let v1 = (c3 * (3.0 * u) + c2 * 2.0) * u + c1;
             let v2 = c3 * (6.0 * u) + c2 * 2.0;
             let g = r.dot(v1);
