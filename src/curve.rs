@@ -656,37 +656,51 @@ fn newton_to_curve(poly: &Polynomial, p: Point, max_distance: f64) -> Option<Poi
     (poly.distance_estimate(q) <= 1e-7).then_some(q)
 }
 
-/// An upper bound on the distance from `p` to the curve: `|p − q| + r` for the first point
-/// `q` of the Newton iteration towards `f = 0` (as in [`newton_to_curve`]) whose first-order
-/// distance `r = |f(q)| / |∇f(q)|` is below 1e-9 px (so `r` is the distance to the curve up
-/// to terms of order `r²`). One iteration fewer than running Newton to convergence.
+/// For a conic (degree ≤ 2): the point of the curve on the gradient line through `p`,
+/// nearest to `p` on the side where `|f|` decreases, as `(t, q)` with `t = |q − p|`.
+///
+/// Along that line `f` is a quadratic in the distance travelled: with `w` the unit vector
+/// down the gradient (towards `f = 0`), `f(p + t w)·sign(f(p)) = |f| − t |∇f| +
+/// t² s wᵀHw / 2` (`s = sign f(p)`, `H` the constant Hessian), whose smallest positive root
+/// is `2|f| / (|∇f| + √(|∇f|² − 2 s wᵀHw |f|))`.
+///
+/// Returns `None` for higher degrees, a vanishing or non-finite gradient, or no point of
+/// the curve on that line.
+fn conic_foot(poly: &Polynomial, p: Point) -> Option<(f64, Point)> {
+    if poly.top > 2 {
+        return None;
+    }
+    let (v, g) = poly.value_and_gradient(p);
+    if v == 0.0 {
+        return Some((0.0, p));
+    }
+    let gn = g.hypot();
+    if !(gn > 0.0 && gn.is_finite() && v.is_finite()) {
+        return None;
+    }
+    let u = g / gn;
+    let c = &poly.local;
+    let uhu = 2.0 * (c[3] * u.x * u.x + c[4] * u.x * u.y + c[5] * u.y * u.y);
+    let a = v.abs();
+    let disc = gn * gn - 2.0 * v.signum() * uhu * a;
+    if disc < 0.0 {
+        return None;
+    }
+    let t = 2.0 * a / (gn + disc.sqrt());
+    Some((t, p - u * (t * v.signum())))
+}
+
+/// An upper bound on the distance from `p` to the curve. For conics, the distance to the
+/// [`conic_foot`] (closed form). Otherwise `|p − q| + r` for the first point `q` of the
+/// Newton iteration towards `f = 0` (as in [`newton_to_curve`]) whose first-order distance
+/// `r = |f(q)| / |∇f(q)|` is below 1e-9 px (so `r` is the distance to the curve up to terms
+/// of order `r²`): one iteration fewer than running Newton to convergence.
 ///
 /// Returns `None` where [`newton_to_curve`] would fail (leaving the disc of radius
 /// `max_distance`, a vanishing gradient, no convergence).
 fn distance_bound(poly: &Polynomial, p: Point, max_distance: f64) -> Option<f64> {
-    if poly.top <= 2 {
-        // A conic: f along the gradient line is a quadratic in the distance travelled, so
-        // the point of the curve on that line is found in closed form. With w the unit
-        // vector down the gradient from p (towards f = 0), f(p + t w)·sign(f(p)) =
-        // |f| − t |∇f| + t² s wᵀHw / 2 (s = sign f(p), H the constant Hessian); its
-        // smallest positive root is 2|f| / (|∇f| + √(|∇f|² − 2 s wᵀHw |f|)).
-        let (v, g) = poly.value_and_gradient(p);
-        if v == 0.0 {
-            return Some(0.0);
-        }
-        let gn = g.hypot();
-        if gn > 0.0 && gn.is_finite() && v.is_finite() {
-            let u = g / gn;
-            let c = &poly.local;
-            let uhu = 2.0 * (c[3] * u.x * u.x + c[4] * u.x * u.y + c[5] * u.y * u.y);
-            let a = v.abs();
-            let disc = gn * gn - 2.0 * v.signum() * uhu * a;
-            if disc >= 0.0 {
-                let t = 2.0 * a / (gn + disc.sqrt());
-                return (t <= max_distance).then_some(t);
-            }
-        }
-        // No point of the curve on that line (or a vanishing gradient): iterate.
+    if let Some((t, _)) = conic_foot(poly, p) {
+        return (t <= max_distance).then_some(t);
     }
     let mut q = p;
     for _ in 0..64 {
