@@ -72,6 +72,11 @@ impl<T: Scalar> Simplex<T> {
         self.vertices.iter().any(|v| v.tag == *tag)
     }
 
+    /// True if a vertex is the point `p` (whatever its tag).
+    pub fn contains_point(&self, p: &[T]) -> bool {
+        self.vertices.iter().any(|v| v.point == p)
+    }
+
     /// The current point `x = Σ λ_i w_i` (the closest point once reduced). Empty simplex: `None`.
     pub fn point(&self, dim: usize) -> Option<Vec<T>> {
         if self.vertices.is_empty() {
