@@ -1,5 +1,8 @@
 //! The number types the GJK variant runs on: `f64` (fast) and exact rationals (fallback).
 
+use super::simplex::{
+    affine_min_norm_weights_by_elimination, affine_min_norm_weights_exact, Vertex,
+};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
@@ -32,6 +35,10 @@ pub(crate) trait Scalar:
     fn tolerance(scale: &Self, eps: f64) -> Self;
     /// True if the value is finite (always for exact numbers).
     fn is_finite(&self) -> bool;
+    /// The weights `μ` (summing to one) of the point of the affine hull of `vertices`
+    /// nearest to the origin, `None` if they are (numerically) affinely dependent: the
+    /// step 1 of Wolfe's minor cycle, by the method suited to the number type.
+    fn affine_min_norm_weights(vertices: &[Vertex<Self>], eps: f64) -> Option<Vec<Self>>;
 }
 
 impl Scalar for f64 {
@@ -59,6 +66,9 @@ impl Scalar for f64 {
     fn is_finite(&self) -> bool {
         f64::is_finite(*self)
     }
+    fn affine_min_norm_weights(vertices: &[Vertex<f64>], eps: f64) -> Option<Vec<f64>> {
+        affine_min_norm_weights_by_elimination(vertices, eps)
+    }
 }
 
 impl Scalar for BigRational {
@@ -79,5 +89,11 @@ impl Scalar for BigRational {
     }
     fn is_finite(&self) -> bool {
         true
+    }
+    fn affine_min_norm_weights(
+        vertices: &[Vertex<BigRational>],
+        _eps: f64,
+    ) -> Option<Vec<BigRational>> {
+        affine_min_norm_weights_exact(vertices)
     }
 }
