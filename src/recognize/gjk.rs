@@ -53,9 +53,7 @@ pub(crate) struct GjkParams {
 }
 
 fn dot<T: Scalar>(a: &[T], b: &[T]) -> T {
-    a.iter()
-        .zip(b)
-        .fold(T::zero(), |s, (x, y)| s + x.clone() * y.clone())
+    T::dot(a, b)
 }
 
 /// Runs the GJK variant from the given simplex (empty: start from any point of `D`).

@@ -86,13 +86,8 @@ impl<T: Scalar> Simplex<T> {
         if self.vertices.is_empty() {
             return None;
         }
-        let mut x = vec![T::zero(); dim];
-        for (v, l) in self.vertices.iter().zip(&self.weights) {
-            for (xi, wi) in x.iter_mut().zip(&v.point) {
-                *xi = xi.clone() + l.clone() * wi.clone();
-            }
-        }
-        Some(x)
+        let points: Vec<&[T]> = self.vertices.iter().map(|v| &v.point[..]).collect();
+        Some(T::combination(&self.weights, &points, dim))
     }
 
     /// Adds a support point with weight zero (the caller then reduces).

@@ -327,10 +327,7 @@ impl<T: Scalar> SupportMap<T> for ListSupport<T> {
     fn support_point(&mut self, x: &[T]) -> Option<Vertex<T>> {
         let mut best: Option<(usize, T)> = None;
         for (i, p) in self.points.iter().enumerate() {
-            let v = p
-                .iter()
-                .zip(x)
-                .fold(T::zero(), |s, (a, b)| s + a.clone() * b.clone());
+            let v = T::dot(p, x);
             if best.as_ref().is_none_or(|(_, b)| v < *b) {
                 best = Some((i, v));
             }
