@@ -20,8 +20,10 @@ fn main() {
         .num_threads(1)
         .build()
         .expect("thread pool");
-    println!("| contour pixels | model | pieces | ms | ns / pixel | GJK runs | exact fallbacks |");
-    println!("|---|---|---|---|---|---|---|");
+    println!(
+        "| contour pixels | model | pieces | ms | ns / pixel | GJK runs | switched to whitened | exact fallbacks |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
     for r in [180.0, 1800.0, 18_000.0, 180_000.0] {
         let pts = disc_border(r);
         if pts.len() > max {
@@ -41,12 +43,13 @@ fn main() {
             let d = pool.install(|| decompose(contours, model, OutlierRule::NotInPiece));
             let s = t.elapsed().as_secs_f64();
             println!(
-                "| {} | {model} | {} | {:.1} | {:.0} | {} | {} |",
+                "| {} | {model} | {} | {:.1} | {:.0} | {} | {} | {} |",
                 pts.len(),
                 d.piece_count(),
                 s * 1e3,
                 s * 1e9 / pts.len() as f64,
                 d.stats.float_runs,
+                d.stats.whitened,
                 d.stats.exact_fallbacks
             );
         }

@@ -277,6 +277,7 @@ fn stats_difference(a: &Stats, b: &Stats) -> Stats {
         certificate_reused: a.certificate_reused - b.certificate_reused,
         float_runs: a.float_runs - b.float_runs,
         float_iterations: a.float_iterations - b.float_iterations,
+        whitened: a.whitened - b.whitened,
         exact_fallbacks: a.exact_fallbacks - b.exact_fallbacks,
         undecided: a.undecided - b.undecided,
     }

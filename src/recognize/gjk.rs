@@ -53,9 +53,7 @@ pub(crate) struct GjkParams {
 }
 
 fn dot<T: Scalar>(a: &[T], b: &[T]) -> T {
-    a.iter()
-        .zip(b)
-        .fold(T::zero(), |s, (x, y)| s + x.clone() * y.clone())
+    T::dot(a, b)
 }
 
 /// Runs the GJK variant from the given simplex (empty: start from any point of `D`).
@@ -103,7 +101,10 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         };
         let xs = dot(&x, &s.point);
         let gap = xx.clone() - xs.clone();
-        let converged = gap <= T::tolerance(&xx, params.eps);
+        // A support point equal to a vertex (another inlier–outlier pair with the same
+        // difference) brings nothing new: in exact arithmetic its gap is zero, and pushing it
+        // would make the simplex affinely dependent.
+        let converged = gap <= T::tolerance(&xx, params.eps) || simplex.contains_point(&s.point);
         if xs > T::zero() && (params.first_separation || converged) {
             return (
                 GjkOutcome::Separated {

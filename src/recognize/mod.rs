@@ -21,6 +21,11 @@
 //! support point); the closest point of the current simplex to the origin is found by
 //! Wolfe's minor cycle, which removes the vertices not needed. It runs in `f64`, in
 //! coordinates relative to a local origin and scaled by powers of two per lifted coordinate.
+//! When that stalls (long, nearly flat pieces make the lifted points strongly correlated and
+//! the simplices nearly degenerate), it runs again in *whitened* coordinates, where the
+//! lifted points have unit covariance ([`conditioning`](self) module); a piece that has
+//! needed them tries them first from then on. Any invertible linear change of coordinates
+//! leaves separation unchanged, and every answer is checked on the integer data anyway.
 //!
 //! # What is exact, and why it terminates
 //! The `f64` run only *proposes*. An answer is given only with a proof checked in exact
@@ -45,6 +50,7 @@
 //! the previous simplex (whose vertices stay points of `D`, since the sets only grow between
 //! removals).
 
+mod conditioning;
 mod exact;
 mod gjk;
 mod lifted;
@@ -53,6 +59,7 @@ mod simplex;
 mod support;
 
 use crate::model::Basis;
+use conditioning::{LinearMap, Moments};
 use exact::{
     barycentric_signed, closest_direction, decide_exactly, dot_i128, origin_in_hull, reduce_by_gcd,
     round_to_certificate, verify_certificate, ExactDecision, Extremes,
@@ -193,6 +200,9 @@ pub struct Stats {
     pub float_runs: u64,
     /// Float GJK iterations, in all.
     pub float_iterations: u64,
+    /// Queries whose float runs stalled in scaled coordinates and went on in whitened ones
+    /// (the piece's later queries then try whitened coordinates first).
+    pub whitened: u64,
     /// Queries that needed the exact fallback.
     pub exact_fallbacks: u64,
     /// Queries answered [`Outcome::Undecided`].
@@ -206,6 +216,7 @@ impl Stats {
         self.certificate_reused += o.certificate_reused;
         self.float_runs += o.float_runs;
         self.float_iterations += o.float_iterations;
+        self.whitened += o.whitened;
         self.exact_fallbacks += o.exact_fallbacks;
         self.undecided += o.undecided;
     }
@@ -222,6 +233,10 @@ pub struct Recognizer {
     lower: LiftedSet,
     /// Largest `|F_i|` over every point added since the last reset.
     max_abs: Vec<i64>,
+    /// Mean and scatter of the liftings of the inliers (brought up to date when needed).
+    moments: Moments,
+    /// The float runs of this piece have needed whitened coordinates: try them first.
+    whiten: bool,
     simplex: Simplex<f64>,
     /// The last verified certificate (coefficients, extremes) and whether it still holds.
     cert: Option<(Vec<i64>, Extremes)>,
@@ -260,6 +275,8 @@ impl Recognizer {
             upper: LiftedSet::new(pd, n),
             lower: LiftedSet::new(pd, n),
             max_abs: vec![0; n],
+            moments: Moments::new(n),
+            whiten: false,
             simplex: Simplex::default(),
             cert: None,
             cert_valid: false,
@@ -281,6 +298,8 @@ impl Recognizer {
         self.upper.clear();
         self.lower.clear();
         self.max_abs.iter_mut().for_each(|m| *m = 0);
+        self.moments.clear();
+        self.whiten = false;
         self.simplex.clear();
         self.cert = None;
         self.cert_valid = false;
@@ -502,103 +521,61 @@ impl Recognizer {
             };
             return self.accept(vec![0; n], e);
         }
-        let scale = power_of_two_scale(&self.max_abs);
-        let mut support = FloatSupport {
-            sets,
-            scale: &scale,
-            y: Vec::with_capacity(n),
-        };
-        // Warm start: rebuild the kept vertices in the current scaling.
-        for v in self.simplex.vertices.iter_mut() {
-            *v = support.vertex(&v.tag);
-        }
         self.stats.float_runs += 1;
-        let mut params = FLOAT_PARAMS;
-        let mut certified: Option<(Vec<i64>, Extremes)> = None;
-        let mut witness = None;
-        // Float runs, each answer checked exactly. A float run that sees the origin inside
-        // a simplex the exact check puts it outside of drops the vertex with the most
-        // negative exact barycentric weight and goes on (a few times) before the exact
-        // fallback is called.
-        let mut converging = false;
-        let mut corrections = 0;
-        for _ in 0..MAX_FLOAT_RUNS {
-            let (outcome, iterations) = gjk(&mut support, &mut self.simplex, &params);
-            self.stats.float_iterations += iterations as u64;
-            match outcome {
-                GjkOutcome::Separated {
-                    direction,
-                    margin,
-                    converged,
-                } => {
-                    let y: Vec<f64> = direction.iter().zip(&scale).map(|(a, s)| a * s).collect();
-                    let tight: Vec<Vec<i64>> = self
-                        .simplex
-                        .vertices
-                        .iter()
-                        .map(|v| sets.difference(&v.tag))
-                        .collect();
-                    certified = round_to_certificate(&sets, &y, margin, &self.max_abs, &tight);
-                    if certified.is_some() || converged || converging {
-                        break;
-                    }
-                    // Converge to the largest-margin direction, then round again.
-                    params.first_separation = false;
-                    converging = true;
+        // The float runs in power-of-two scaled coordinates, or in whitened ones (better
+        // conditioned when the liftings are strongly correlated, see the `conditioning`
+        // module) once the piece has needed them. When both may be used, the first one gives
+        // up at its first stall, the other one takes over, and the first one has a thorough
+        // try last. Each attempt is warm-started from the simplex the previous one left.
+        let scaled = LinearMap::diagonal(&power_of_two_scale(&self.max_abs));
+        let mut run = |map: &LinearMap, thorough: bool| {
+            float_decide(
+                sets,
+                map,
+                &mut self.simplex,
+                &self.max_abs,
+                &mut self.stats,
+                thorough,
+            )
+        };
+        let may_whiten = self.inliers.len() >= LinearMap::min_points(n);
+        let first = if self.whiten {
+            self.moments.catch_up(&self.inliers);
+            LinearMap::whitening(&self.moments)
+        } else {
+            None
+        };
+        let answer = match first {
+            Some(w) => run(&w, false)
+                .or_else(|| run(&scaled, true))
+                .or_else(|| run(&w, true)),
+            None => {
+                let mut answer = run(&scaled, !may_whiten);
+                if answer.is_none() && may_whiten {
+                    self.moments.catch_up(&self.inliers);
+                    answer = match LinearMap::whitening(&self.moments) {
+                        Some(w) => {
+                            self.whiten = true;
+                            run(&w, true).or_else(|| run(&scaled, true))
+                        }
+                        None => run(&scaled, true),
+                    };
+                    self.stats.whitened += u64::from(self.whiten);
                 }
-                GjkOutcome::OriginInside | GjkOutcome::Stalled => {
-                    if self.simplex.len() > n + 1 {
-                        break;
-                    }
-                    let points: Vec<Vec<i64>> = self
-                        .simplex
-                        .vertices
-                        .iter()
-                        .map(|v| sets.difference(&v.tag))
-                        .collect();
-                    match barycentric_signed(&points) {
-                        Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
-                            let tags = self.simplex.vertices.iter().map(|v| v.tag).collect();
-                            witness = Some((tags, w));
-                            break;
-                        }
-                        Some(w) if corrections < MAX_CORRECTIONS && self.simplex.len() > 1 => {
-                            corrections += 1;
-                            let worst = (0..w.len()).min_by(|&i, &j| w[i].cmp(&w[j])).unwrap_or(0);
-                            self.simplex.vertices.remove(worst);
-                            let k = self.simplex.vertices.len();
-                            self.simplex.weights = vec![1.0 / k as f64; k];
-                        }
-                        _ => {
-                            // Decide on the simplex exactly: the origin in its hull is a
-                            // witness; otherwise its exact closest point may separate all
-                            // of D.
-                            if let Some((used, weights)) = origin_in_hull(&points) {
-                                let tags: Vec<Tag> =
-                                    used.iter().map(|&i| self.simplex.vertices[i].tag).collect();
-                                witness = Some((tags, weights));
-                            } else if let Some(a) = closest_direction(&points) {
-                                certified =
-                                    verify_certificate(&sets, &a).map(|e| reduce_by_gcd(a, e));
-                            }
-                            break;
-                        }
-                    }
-                }
-                GjkOutcome::Empty => break,
+                answer
             }
-        }
-        if let Some((a, e)) = certified {
-            return self.accept(a, e);
-        }
-        if let Some((tags, weights)) = witness {
-            return self.reject(&tags, weights);
+        };
+        match answer {
+            Some(FloatAnswer::Described(a, e)) => return self.accept(a, e),
+            Some(FloatAnswer::NotDescribed(tags, weights)) => return self.reject(&tags, weights),
+            None => {}
         }
         // The float run could not prove its answer: decide in exact arithmetic.
         self.stats.exact_fallbacks += 1;
         let warm: Vec<Tag> = self.simplex.vertices.iter().map(|v| v.tag).collect();
         self.simplex.clear();
-        match decide_exactly(&sets, &warm, &self.max_abs) {
+        let dec = decide_exactly(&sets, &warm, &self.max_abs);
+        match dec {
             ExactDecision::Described(a, e) => self.accept(a, e),
             ExactDecision::NotDescribed(tags, weights) => self.reject(&tags, weights),
             ExactDecision::Undecided => {
@@ -628,6 +605,111 @@ impl Recognizer {
         self.cert_valid = false;
         Outcome::NotDescribed
     }
+}
+
+/// A decision of the float runs, already checked exactly.
+enum FloatAnswer {
+    /// A verified integer certificate.
+    Described(Vec<i64>, Extremes),
+    /// Tags of points of `D` and exact weights with `Σ λ d = 0`.
+    NotDescribed(Vec<Tag>, Vec<BigRational>),
+}
+
+/// Float runs of the GJK variant on `map·D`, warm-started from `simplex`, each answer checked
+/// exactly; `None` when none could be proven.
+///
+/// A float run that sees the origin inside a simplex the exact check puts it outside of drops
+/// the vertex with the most negative exact barycentric weight and goes on (a few times).
+fn float_decide(
+    sets: Sets<'_>,
+    map: &LinearMap,
+    simplex: &mut Simplex<f64>,
+    max_abs: &[i64],
+    stats: &mut Stats,
+    thorough: bool,
+) -> Option<FloatAnswer> {
+    let n = map.dim();
+    let mut support = FloatSupport {
+        sets,
+        map,
+        y: Vec::with_capacity(n),
+    };
+    // Warm start: rebuild the kept vertices in the current coordinates.
+    for v in simplex.vertices.iter_mut() {
+        *v = support.vertex(&v.tag);
+    }
+    let mut params = FLOAT_PARAMS;
+    let mut converging = false;
+    let mut corrections = 0;
+    for _ in 0..MAX_FLOAT_RUNS {
+        let (outcome, iterations) = gjk(&mut support, simplex, &params);
+        stats.float_iterations += iterations as u64;
+        match outcome {
+            GjkOutcome::Separated {
+                direction,
+                margin,
+                converged,
+            } => {
+                let y = map.pull_back(&direction);
+                let tight: Vec<Vec<i64>> = simplex
+                    .vertices
+                    .iter()
+                    .map(|v| sets.difference(&v.tag))
+                    .collect();
+                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, &tight) {
+                    return Some(FloatAnswer::Described(a, e));
+                }
+                if converged || converging {
+                    return None;
+                }
+                // Converge to the largest-margin direction, then round again.
+                params.first_separation = false;
+                converging = true;
+            }
+            GjkOutcome::Stalled if iterations == 0 => {
+                // The warm-start simplex is degenerate in these coordinates: start afresh.
+                simplex.clear();
+            }
+            GjkOutcome::Stalled if !thorough => return None,
+            GjkOutcome::OriginInside | GjkOutcome::Stalled => {
+                if simplex.len() > n + 1 {
+                    return None;
+                }
+                let points: Vec<Vec<i64>> = simplex
+                    .vertices
+                    .iter()
+                    .map(|v| sets.difference(&v.tag))
+                    .collect();
+                match barycentric_signed(&points) {
+                    Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
+                        let tags = simplex.vertices.iter().map(|v| v.tag).collect();
+                        return Some(FloatAnswer::NotDescribed(tags, w));
+                    }
+                    Some(w) if corrections < MAX_CORRECTIONS && simplex.len() > 1 => {
+                        corrections += 1;
+                        let worst = (0..w.len()).min_by(|&i, &j| w[i].cmp(&w[j])).unwrap_or(0);
+                        simplex.vertices.remove(worst);
+                        let k = simplex.vertices.len();
+                        simplex.weights = vec![1.0 / k as f64; k];
+                    }
+                    _ => {
+                        // Decide on the simplex exactly: the origin in its hull is a witness;
+                        // otherwise its exact closest point may separate all of D.
+                        if let Some((used, weights)) = origin_in_hull(&points) {
+                            let tags = used.iter().map(|&i| simplex.vertices[i].tag).collect();
+                            return Some(FloatAnswer::NotDescribed(tags, weights));
+                        }
+                        let a = closest_direction(&points)?;
+                        let e = verify_certificate(&sets, &a)?;
+                        let (a, e) = reduce_by_gcd(a, e);
+                        return Some(FloatAnswer::Described(a, e));
+                    }
+                }
+            }
+            GjkOutcome::Empty => return None,
+        }
+    }
+    None
 }
 
 /// Powers of two bringing every lifted coordinate near magnitude one (`max_abs[i]` bounds
@@ -675,9 +757,10 @@ fn lift_points(
 /// The float GJK run to convergence in coordinates scaled by `scale`: the direction of
 /// largest margin, unscaled. `None` if the sets are not (numerically) separated.
 fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
+    let map = LinearMap::diagonal(scale);
     let mut support = FloatSupport {
         sets,
-        scale,
+        map: &map,
         y: Vec::with_capacity(scale.len()),
     };
     let mut simplex = Simplex::default();
@@ -688,7 +771,7 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
     let GjkOutcome::Separated { direction, .. } = gjk(&mut support, &mut simplex, &params).0 else {
         return None;
     };
-    Some(direction.iter().zip(scale).map(|(a, s)| a * s).collect())
+    Some(map.pull_back(&direction))
 }
 
 /// The separating direction of largest margin between `low` and `high` point sets (relative

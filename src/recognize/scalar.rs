@@ -1,8 +1,9 @@
 //! The number types the GJK variant runs on: `f64` (fast) and exact rationals (fallback).
 
+use super::simplex::{affine_min_norm_by_elimination, affine_min_norm_weights_exact, Vertex, Work};
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{Signed, Zero};
+use num_traits::{One, Signed, Zero};
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -32,6 +33,27 @@ pub(crate) trait Scalar:
     fn tolerance(scale: &Self, eps: f64) -> Self;
     /// True if the value is finite (always for exact numbers).
     fn is_finite(&self) -> bool;
+    /// The weights `μ` (summing to one) of the point of the affine hull of `vertices`
+    /// nearest to the origin, into `work.mu`; false if they are (numerically) affinely
+    /// dependent: the step 1 of Wolfe's minor cycle, by the method suited to the number
+    /// type.
+    fn affine_min_norm_into(vertices: &[Vertex<Self>], eps: f64, work: &mut Work<Self>) -> bool;
+    /// `Σ a_i b_i`.
+    fn dot(a: &[Self], b: &[Self]) -> Self {
+        a.iter()
+            .zip(b)
+            .fold(Self::zero(), |s, (x, y)| s + x.clone() * y.clone())
+    }
+    /// `Σ_i λ_i p_i`, in dimension `dim`.
+    fn combination(weights: &[Self], points: &[&[Self]], dim: usize) -> Vec<Self> {
+        let mut x = vec![Self::zero(); dim];
+        for (p, l) in points.iter().zip(weights) {
+            for (xi, pi) in x.iter_mut().zip(p.iter()) {
+                *xi = xi.clone() + l.clone() * pi.clone();
+            }
+        }
+        x
+    }
 }
 
 impl Scalar for f64 {
@@ -59,6 +81,9 @@ impl Scalar for f64 {
     fn is_finite(&self) -> bool {
         f64::is_finite(*self)
     }
+    fn affine_min_norm_into(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
+        affine_min_norm_by_elimination(vertices, eps, work)
+    }
 }
 
 impl Scalar for BigRational {
@@ -79,5 +104,130 @@ impl Scalar for BigRational {
     }
     fn is_finite(&self) -> bool {
         true
+    }
+    fn affine_min_norm_into(
+        vertices: &[Vertex<BigRational>],
+        _eps: f64,
+        work: &mut Work<BigRational>,
+    ) -> bool {
+        match affine_min_norm_weights_exact(vertices) {
+            Some(mu) => {
+                work.mu = mu;
+                true
+            }
+            None => false,
+        }
+    }
+    /// Over the common denominator of the terms, reduced once: rational additions would
+    /// each reduce by a gcd.
+    fn dot(a: &[BigRational], b: &[BigRational]) -> BigRational {
+        let dens: Vec<BigInt> = a
+            .iter()
+            .zip(b)
+            .map(|(x, y)| x.denom() * y.denom())
+            .collect();
+        let common = common_denominator(&dens);
+        let mut sum = BigInt::zero();
+        for ((x, y), d) in a.iter().zip(b).zip(&dens) {
+            let t = x.numer() * y.numer();
+            sum += if *d == common { t } else { t * (&common / d) };
+        }
+        BigRational::new(sum, common)
+    }
+    /// Over the common denominator of the weights when the points are integers (as every
+    /// point of `D` is), one reduction per coordinate.
+    fn combination(
+        weights: &[BigRational],
+        points: &[&[BigRational]],
+        dim: usize,
+    ) -> Vec<BigRational> {
+        if !points.iter().all(|p| p.iter().all(|v| v.denom().is_one())) {
+            let mut x = vec![<BigRational as Zero>::zero(); dim];
+            for (p, l) in points.iter().zip(weights) {
+                for (xi, pi) in x.iter_mut().zip(p.iter()) {
+                    *xi += l * pi;
+                }
+            }
+            return x;
+        }
+        let dens: Vec<BigInt> = weights.iter().map(|l| l.denom().clone()).collect();
+        let common = common_denominator(&dens);
+        let scaled: Vec<BigInt> = weights
+            .iter()
+            .map(|l| {
+                if *l.denom() == common {
+                    l.numer().clone()
+                } else {
+                    l.numer() * (&common / l.denom())
+                }
+            })
+            .collect();
+        (0..dim)
+            .map(|j| {
+                let sum = points
+                    .iter()
+                    .zip(&scaled)
+                    .fold(BigInt::zero(), |s, (p, l)| s + l * p[j].numer());
+                BigRational::new(sum, common.clone())
+            })
+            .collect()
+    }
+}
+
+/// The least common multiple of positive denominators (equal ones cost no gcd).
+fn common_denominator(dens: &[BigInt]) -> BigInt {
+    let mut common = BigInt::one();
+    for d in dens {
+        if !d.is_one() && *d != common {
+            common = num_integer::Integer::lcm(&common, d);
+        }
+    }
+    common
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+        /// The common-denominator dot product and combination equal term-by-term rational
+        /// arithmetic, for integer and fractional points.
+        #[test]
+        fn common_denominator_arithmetic_is_exact(
+            raw in proptest::collection::vec(
+                proptest::collection::vec((-(1i64 << 40)..(1i64 << 40), 1i64..6), 5), 1..=6),
+            weights in proptest::collection::vec((-1000i64..1000, 1i64..50), 6),
+            integer in any::<bool>(),
+        ) {
+            let points: Vec<Vec<BigRational>> = raw
+                .iter()
+                .map(|p| p.iter().map(|&(n, d)| q(n, if integer { 1 } else { d })).collect())
+                .collect();
+            let w: Vec<BigRational> = weights.iter().take(points.len()).map(|&(n, d)| q(n, d)).collect();
+            let naive_dot = |a: &[BigRational], b: &[BigRational]| {
+                a.iter().zip(b).fold(<BigRational as Zero>::zero(), |s, (x, y)| s + x * y)
+            };
+            for a in &points {
+                for b in &points {
+                    prop_assert_eq!(<BigRational as Scalar>::dot(a, b), naive_dot(a, b));
+                }
+                prop_assert_eq!(<BigRational as Scalar>::dot(a, &w[..a.len().min(w.len())]),
+                    naive_dot(a, &w[..a.len().min(w.len())]));
+            }
+            let refs: Vec<&[BigRational]> = points.iter().map(|p| &p[..]).collect();
+            let mut want = vec![<BigRational as Zero>::zero(); 5];
+            for (p, l) in points.iter().zip(&w) {
+                for (x, v) in want.iter_mut().zip(p) {
+                    *x += l * v;
+                }
+            }
+            prop_assert_eq!(<BigRational as Scalar>::combination(&w, &refs, 5), want);
+        }
     }
 }

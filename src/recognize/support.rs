@@ -5,6 +5,7 @@
 //! `min_{d ∈ S−S⁻} x·d = min_{S} x·F − max_{S⁻} x·F`, one pass over each set suffices:
 //! `O(|S| + |S⁺| + |S⁻|)` instead of `O(|S|·(|S⁺| + |S⁻|))` for the explicit difference set.
 
+use super::conditioning::LinearMap;
 use super::lifted::LiftedSet;
 use super::scalar::Scalar;
 use super::simplex::Vertex;
@@ -125,26 +126,25 @@ fn pick<V: PartialOrd + Clone>(
     })
 }
 
-/// Support points in `f64`, in coordinates scaled by powers of two (`d'_i = s_i d_i`) so
-/// that every coordinate has a magnitude near one: separation is invariant under this
-/// diagonal map, and the closest-point solves are far better conditioned.
+/// Support points in `f64`, in coordinates mapped by an invertible linear map `T`
+/// (`d' = T d`, see [`LinearMap`]): separation is invariant under `T`, chosen to make the
+/// closest-point solves well conditioned.
 pub(crate) struct FloatSupport<'a> {
     /// The problem.
     pub sets: Sets<'a>,
-    /// The scale `s_i` of each lifted coordinate.
-    pub scale: &'a [f64],
-    /// Scratch: the direction in unscaled coordinates.
+    /// The map `T`.
+    pub map: &'a LinearMap,
+    /// Scratch: the direction `Tᵀx` in lifted coordinates.
     pub y: Vec<f64>,
 }
 
 impl SupportMap<f64> for FloatSupport<'_> {
     fn dim(&self) -> usize {
-        self.scale.len()
+        self.map.dim()
     }
 
     fn support_point(&mut self, x: &[f64]) -> Option<Vertex<f64>> {
-        self.y.clear();
-        self.y.extend(x.iter().zip(self.scale).map(|(a, s)| a * s));
+        self.map.pull_back_into(x, &mut self.y);
         let inl = float_extremes(self.sets.inliers, &self.y);
         let up = float_extremes(self.sets.upper, &self.y);
         let lo = float_extremes(self.sets.lower, &self.y);
@@ -153,13 +153,8 @@ impl SupportMap<f64> for FloatSupport<'_> {
     }
 
     fn vertex(&self, tag: &Tag) -> Vertex<f64> {
-        let d = self.sets.difference(tag);
         Vertex {
-            point: d
-                .iter()
-                .zip(self.scale)
-                .map(|(&v, s)| v as f64 * s)
-                .collect(),
+            point: self.map.apply(&self.sets.difference(tag)),
             tag: *tag,
         }
     }
@@ -332,10 +327,7 @@ impl<T: Scalar> SupportMap<T> for ListSupport<T> {
     fn support_point(&mut self, x: &[T]) -> Option<Vertex<T>> {
         let mut best: Option<(usize, T)> = None;
         for (i, p) in self.points.iter().enumerate() {
-            let v = p
-                .iter()
-                .zip(x)
-                .fold(T::zero(), |s, (a, b)| s + a.clone() * b.clone());
+            let v = T::dot(p, x);
             if best.as_ref().is_none_or(|(_, b)| v < *b) {
                 best = Some((i, v));
             }

@@ -626,3 +626,137 @@ proptest! {
         prop_assert!(size(&small) <= size(&c), "{small:?} larger than {c:?}");
     }
 }
+
+/// The exact decision of the current sets of `r`, by the exact fallback alone.
+fn exact_outcome(r: &Recognizer) -> Outcome {
+    let sets = Sets {
+        inliers: &r.inliers,
+        upper: &r.upper,
+        lower: &r.lower,
+    };
+    match exact::decide_exactly(&sets, &[], &r.max_abs) {
+        exact::ExactDecision::Described(..) => Outcome::Described,
+        exact::ExactDecision::NotDescribed(..) => Outcome::NotDescribed,
+        exact::ExactDecision::Undecided => Outcome::Undecided,
+    }
+}
+
+/// A long, nearly flat arc of a digital circle of radius 180 000 under the conic basis: the
+/// lifted points lie close to a 3-dimensional subspace and the float runs in scaled
+/// coordinates stall (the case that once sent most queries of a 10⁶-pixel contour to the
+/// exact fallback). Grown pixel by pixel as a decomposition does, a new piece started at each
+/// "not described": the float runs in whitened coordinates prove every answer, each one the
+/// same as the exact fallback's, and each certificate or witness checks.
+#[test]
+fn long_flat_arc_is_decided_like_the_exact_fallback() {
+    let r: i64 = 180_000;
+    let basis: Arc<dyn Basis> = Arc::new(Model::Conic.basis());
+    let top = |x: i64| -> i64 {
+        let mut y = ((r * r - x * x) as f64).sqrt() as i64;
+        while x * x + y * y > r * r {
+            y -= 1;
+        }
+        while x * x + (y + 1) * (y + 1) <= r * r {
+            y += 1;
+        }
+        y
+    };
+    let mut total = Stats::default();
+    let mut checked = 0;
+    // Columns x0.. of the disc border, slopes from 0.1 to 0.7: one pixel per column.
+    for x0 in [20_000i64, 57_000, 100_000] {
+        let mut rec = Recognizer::new(basis.clone(), &[x0, top(x0)]).unwrap();
+        let (mut s, mut up, mut lo): (Pts, Pts, Pts) = Default::default();
+        let mut pieces = 0;
+        let mut x = x0;
+        while pieces < 2 {
+            let y = top(x);
+            let p = vec![x, y];
+            rec.add_inlier(&p);
+            s.push(p);
+            for q in [vec![x, y + 1], vec![x + 1, y + 1]] {
+                if q[0] * q[0] + q[1] * q[1] > r * r && !up.contains(&q) {
+                    rec.add_outlier(&q, Side::Upper);
+                    up.push(q);
+                }
+            }
+            let q = vec![x, y - 1];
+            rec.add_outlier(&q, Side::Lower);
+            lo.push(q);
+            let before = rec.stats();
+            let got = rec.recognize();
+            if rec.stats().float_runs > before.float_runs {
+                // A GJK run decided: compare with the exact fallback, check the proof.
+                assert_eq!(got, exact_outcome(&rec), "x0 {x0}, {} pixels", s.len());
+                checked += 1;
+                if got == Outcome::Described {
+                    let c = rec.certificate().unwrap();
+                    assert!(certificate_holds(basis.as_ref(), &c, &s, &up, &lo));
+                } else {
+                    let w = rec.witness().unwrap();
+                    assert!(witness_holds(basis.as_ref(), w, &s, &up, &lo));
+                }
+            }
+            if got != Outcome::Described {
+                pieces += 1;
+                rec.reset(&[x, y]);
+                (s, up, lo) = Default::default();
+                continue; // the same pixel starts the next piece
+            }
+            x += 1;
+        }
+        total.add(&rec.stats());
+    }
+    assert!(checked > 50, "{total:?}");
+    assert!(
+        total.whitened > 0,
+        "the whitened coordinates were not needed: {total:?}"
+    );
+    assert_eq!(total.exact_fallbacks, 0, "{total:?}");
+    assert_eq!(total.undecided, 0, "{total:?}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+    /// Float runs in whitened coordinates alone, on banded instances (large enough to be
+    /// whitened): every answer they prove is the exact fallback's, and checks.
+    #[test]
+    fn whitened_float_runs_agree_with_the_exact_fallback(
+        model in prop_oneof![Just(Model::Line), Just(Model::Circle), Just(Model::Conic), Just(Model::Poly(3))],
+        raw in proptest::collection::vec(-6i64..=6, 10),
+        band in 1i64..40,
+        flip in proptest::option::of(0usize..100),
+    ) {
+        let basis: Arc<dyn Basis> = Arc::new(model.basis());
+        let coefs = &raw[..basis.dim()];
+        prop_assume!(coefs.iter().any(|&c| c != 0));
+        let (s, up, lo) = banded_instance(model, coefs, band, flip, 6);
+        prop_assume!(!s.is_empty() && (!up.is_empty() || !lo.is_empty()));
+        let mut r = Recognizer::new(basis.clone(), &s[0]).unwrap();
+        s.iter().for_each(|p| r.add_inlier(p));
+        up.iter().for_each(|p| r.add_outlier(p, Side::Upper));
+        lo.iter().for_each(|p| r.add_outlier(p, Side::Lower));
+        r.moments.catch_up(&r.inliers);
+        let Some(map) = LinearMap::whitening(&r.moments) else {
+            return Ok(());
+        };
+        let want = exact_outcome(&r);
+        let sets = Sets { inliers: &r.inliers, upper: &r.upper, lower: &r.lower };
+        let mut simplex = Simplex::default();
+        let mut stats = Stats::default();
+        let got = float_decide(sets, &map, &mut simplex, &r.max_abs, &mut stats, true);
+        match got {
+            Some(FloatAnswer::Described(a, e)) => {
+                prop_assert_eq!(want, Outcome::Described);
+                let c = Certificate { origin: s[0].clone(), coefficients: a, lower: e.lower, upper: e.upper, above: e.above, below: e.below };
+                prop_assert!(certificate_holds(basis.as_ref(), &c, &s, &up, &lo));
+            }
+            Some(FloatAnswer::NotDescribed(tags, weights)) => {
+                prop_assert_eq!(want, Outcome::NotDescribed);
+                r.reject(&tags, weights);
+                prop_assert!(witness_holds(basis.as_ref(), r.witness().unwrap(), &s, &up, &lo));
+            }
+            None => {}
+        }
+    }
+}
