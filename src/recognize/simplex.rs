@@ -255,8 +255,8 @@ pub(crate) fn affine_min_norm_by_elimination<T: Scalar>(
 }
 
 /// The weights of [`affine_min_norm_by_elimination`] in exact arithmetic, without a single
-/// rational reduction in the elimination: the vertices are brought to integers (multiplied by the lcm of their
-/// denominators, which leaves `μ` unchanged), the reduced system `(EᵀE) t = −Eᵀw₀` is solved
+/// rational reduction in the elimination: the vertices are brought to integers (multiplied
+/// by the lcm of their denominators, which leaves `μ` unchanged), the reduced system `(EᵀE) t = −Eᵀw₀` is solved
 /// by fraction-free (Bareiss) elimination in big integers, and only the `k` weights
 /// `μ = (d − Σy, y₁, …)/d` with `y = d·t`, `d = det(EᵀE)`, are reduced at the end.
 ///
