@@ -166,17 +166,25 @@ impl LinearMap {
     }
 
     /// `T d`.
+    #[cfg(test)]
     pub fn apply(&self, d: &[i64]) -> Vec<f64> {
+        self.apply_with(|j| d[j])
+    }
+
+    /// `T d` for the vector with coordinates `d(0), …, d(n−1)` (computed once each).
+    pub fn apply_with(&self, d: impl Fn(usize) -> i64) -> Vec<f64> {
         let n = self.n;
-        (0..n)
-            .map(|i| {
-                self.t[i * n..(i + 1) * n]
-                    .iter()
-                    .zip(d)
-                    .map(|(a, &b)| a * b as f64)
-                    .sum()
-            })
-            .collect()
+        let mut out = vec![0.0; n];
+        for j in 0..n {
+            let dj = d(j) as f64;
+            if dj == 0.0 {
+                continue;
+            }
+            for (i, o) in out.iter_mut().enumerate() {
+                *o += self.t[i * n + j] * dj;
+            }
+        }
+        out
     }
 
     /// `Tᵀ x` into `out`: the direction in lifted coordinates of the direction `x` of the

@@ -246,6 +246,8 @@ pub struct Recognizer {
     stats: Stats,
     rel: Vec<i64>,
     lift: Vec<i64>,
+    /// Scratch: the simplex vertices as exact points of `D`.
+    diffs: Vec<Vec<i64>>,
 }
 
 /// Float runs per query at most (separations, convergence, corrections).
@@ -285,6 +287,7 @@ impl Recognizer {
             stats: Stats::default(),
             rel: vec![0; pd],
             lift: vec![0; n],
+            diffs: Vec::new(),
             basis,
         })
     }
@@ -536,6 +539,7 @@ impl Recognizer {
                 &self.max_abs,
                 &mut self.stats,
                 thorough,
+                &mut self.diffs,
             )
         };
         let may_whiten = self.inliers.len() >= LinearMap::min_points(n);
@@ -620,6 +624,7 @@ enum FloatAnswer {
 ///
 /// A float run that sees the origin inside a simplex the exact check puts it outside of drops
 /// the vertex with the most negative exact barycentric weight and goes on (a few times).
+/// `diffs` is scratch space for the simplex's exact points.
 fn float_decide(
     sets: Sets<'_>,
     map: &LinearMap,
@@ -627,7 +632,20 @@ fn float_decide(
     max_abs: &[i64],
     stats: &mut Stats,
     thorough: bool,
+    diffs: &mut Vec<Vec<i64>>,
 ) -> Option<FloatAnswer> {
+    // The exact points of D at the simplex's vertices, into `diffs` (allocations reused).
+    // (Only the first `simplex.len()` entries are meaningful; longer is kept for reuse.)
+    let exact_points = |simplex: &Simplex<f64>, diffs: &mut Vec<Vec<i64>>| -> usize {
+        let k = simplex.len();
+        if diffs.len() < k {
+            diffs.resize_with(k, Vec::new);
+        }
+        for (d, v) in diffs.iter_mut().zip(&simplex.vertices) {
+            sets.difference_into(&v.tag, d);
+        }
+        k
+    };
     let n = map.dim();
     let mut support = FloatSupport {
         sets,
@@ -651,12 +669,9 @@ fn float_decide(
                 converged,
             } => {
                 let y = map.pull_back(&direction);
-                let tight: Vec<Vec<i64>> = simplex
-                    .vertices
-                    .iter()
-                    .map(|v| sets.difference(&v.tag))
-                    .collect();
-                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, &tight) {
+                let k = exact_points(simplex, diffs);
+                let tight = &diffs[..k];
+                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, tight) {
                     return Some(FloatAnswer::Described(a, e));
                 }
                 if converged || converging {
@@ -675,12 +690,9 @@ fn float_decide(
                 if simplex.len() > n + 1 {
                     return None;
                 }
-                let points: Vec<Vec<i64>> = simplex
-                    .vertices
-                    .iter()
-                    .map(|v| sets.difference(&v.tag))
-                    .collect();
-                match barycentric_signed(&points) {
+                let k = exact_points(simplex, diffs);
+                let points = &diffs[..k];
+                match barycentric_signed(points) {
                     Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
                         let tags = simplex.vertices.iter().map(|v| v.tag).collect();
                         return Some(FloatAnswer::NotDescribed(tags, w));
@@ -695,11 +707,11 @@ fn float_decide(
                     _ => {
                         // Decide on the simplex exactly: the origin in its hull is a witness;
                         // otherwise its exact closest point may separate all of D.
-                        if let Some((used, weights)) = origin_in_hull(&points) {
+                        if let Some((used, weights)) = origin_in_hull(points) {
                             let tags = used.iter().map(|&i| simplex.vertices[i].tag).collect();
                             return Some(FloatAnswer::NotDescribed(tags, weights));
                         }
-                        let a = closest_direction(&points)?;
+                        let a = closest_direction(points)?;
                         let e = verify_certificate(&sets, &a)?;
                         let (a, e) = reduce_by_gcd(a, e);
                         return Some(FloatAnswer::Described(a, e));

@@ -45,10 +45,10 @@ pub(crate) trait Scalar:
             .fold(Self::zero(), |s, (x, y)| s + x.clone() * y.clone())
     }
     /// `Σ_i λ_i p_i`, in dimension `dim`.
-    fn combination(weights: &[Self], points: &[&[Self]], dim: usize) -> Vec<Self> {
+    fn combination<P: AsRef<[Self]>>(weights: &[Self], points: &[P], dim: usize) -> Vec<Self> {
         let mut x = vec![Self::zero(); dim];
         for (p, l) in points.iter().zip(weights) {
-            for (xi, pi) in x.iter_mut().zip(p.iter()) {
+            for (xi, pi) in x.iter_mut().zip(p.as_ref()) {
                 *xi = xi.clone() + l.clone() * pi.clone();
             }
         }
@@ -136,15 +136,18 @@ impl Scalar for BigRational {
     }
     /// Over the common denominator of the weights when the points are integers (as every
     /// point of `D` is), one reduction per coordinate.
-    fn combination(
+    fn combination<P: AsRef<[BigRational]>>(
         weights: &[BigRational],
-        points: &[&[BigRational]],
+        points: &[P],
         dim: usize,
     ) -> Vec<BigRational> {
-        if !points.iter().all(|p| p.iter().all(|v| v.denom().is_one())) {
+        if !points
+            .iter()
+            .all(|p| p.as_ref().iter().all(|v| v.denom().is_one()))
+        {
             let mut x = vec![<BigRational as Zero>::zero(); dim];
             for (p, l) in points.iter().zip(weights) {
-                for (xi, pi) in x.iter_mut().zip(p.iter()) {
+                for (xi, pi) in x.iter_mut().zip(p.as_ref()) {
                     *xi += l * pi;
                 }
             }
@@ -167,7 +170,7 @@ impl Scalar for BigRational {
                 let sum = points
                     .iter()
                     .zip(&scaled)
-                    .fold(BigInt::zero(), |s, (p, l)| s + l * p[j].numer());
+                    .fold(BigInt::zero(), |s, (p, l)| s + l * p.as_ref()[j].numer());
                 BigRational::new(sum, common.clone())
             })
             .collect()

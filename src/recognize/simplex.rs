@@ -32,6 +32,12 @@ pub(crate) struct Vertex<T> {
     pub tag: Tag,
 }
 
+impl<T> AsRef<[T]> for Vertex<T> {
+    fn as_ref(&self) -> &[T] {
+        &self.point
+    }
+}
+
 /// The simplex, owned by the caller and reused between runs (warm start).
 #[derive(Clone, Debug)]
 pub(crate) struct Simplex<T> {
@@ -113,8 +119,7 @@ impl<T: Scalar> Simplex<T> {
         if self.vertices.is_empty() {
             return None;
         }
-        let points: Vec<&[T]> = self.vertices.iter().map(|v| &v.point[..]).collect();
-        Some(T::combination(&self.weights, &points, dim))
+        Some(T::combination(&self.weights, &self.vertices, dim))
     }
 
     /// Adds a support point with weight zero (the caller then reduces).

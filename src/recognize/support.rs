@@ -51,16 +51,24 @@ pub(crate) struct Sets<'a> {
 impl Sets<'_> {
     /// The exact difference vector named by `tag`.
     pub fn difference(&self, tag: &Tag) -> Vec<i64> {
+        let mut d = Vec::new();
+        self.difference_into(tag, &mut d);
+        d
+    }
+
+    /// The exact difference vector named by `tag`, into `out` (its allocation reused).
+    pub fn difference_into(&self, tag: &Tag, out: &mut Vec<i64>) {
+        let (minuend, subtrahend) = self.pair(tag);
+        out.clear();
+        out.extend(minuend.iter().zip(subtrahend).map(|(a, b)| a - b));
+    }
+
+    /// The liftings `(a, b)` whose difference `a − b` is the point of `D` named by `tag`.
+    fn pair(&self, tag: &Tag) -> (&[i64], &[i64]) {
         let s = self.inliers.lifted(tag.inlier as usize);
         match tag.side {
-            Side::Upper => {
-                let o = self.upper.lifted(tag.outlier as usize);
-                o.iter().zip(s).map(|(a, b)| a - b).collect()
-            }
-            Side::Lower => {
-                let o = self.lower.lifted(tag.outlier as usize);
-                s.iter().zip(o).map(|(a, b)| a - b).collect()
-            }
+            Side::Upper => (self.upper.lifted(tag.outlier as usize), s),
+            Side::Lower => (s, self.lower.lifted(tag.outlier as usize)),
         }
     }
 
@@ -153,8 +161,9 @@ impl SupportMap<f64> for FloatSupport<'_> {
     }
 
     fn vertex(&self, tag: &Tag) -> Vertex<f64> {
+        let (a, b) = self.sets.pair(tag);
         Vertex {
-            point: self.map.apply(&self.sets.difference(tag)),
+            point: self.map.apply_with(|j| a[j] - b[j]),
             tag: *tag,
         }
     }
