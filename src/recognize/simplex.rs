@@ -234,12 +234,18 @@ pub(crate) fn affine_min_norm_by_elimination<T: Scalar>(
     let edges = &work.edges;
     let edge = |i: usize| &edges[i * n..(i + 1) * n];
     // Augmented matrix [EᵀE | −Eᵀw0], m × (m+1), row-major.
+    // (EᵀE is symmetric: each product once.)
     work.system.clear();
+    work.system.resize(m * (m + 1), T::zero());
     for i in 0..m {
-        for j in 0..m {
-            work.system.push(dot(edge(i), edge(j)));
+        for j in i..m {
+            let g = dot(edge(i), edge(j));
+            if j != i {
+                work.system[j * (m + 1) + i] = g.clone();
+            }
+            work.system[i * (m + 1) + j] = g;
         }
-        work.system.push(-dot(edge(i), w0));
+        work.system[i * (m + 1) + m] = -dot(edge(i), w0);
     }
     let scale = (0..m).fold(T::zero(), |s, i| {
         let d = &work.system[i * (m + 1) + i];
