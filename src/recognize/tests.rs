@@ -744,7 +744,15 @@ proptest! {
         let sets = Sets { inliers: &r.inliers, upper: &r.upper, lower: &r.lower };
         let mut simplex = Simplex::default();
         let mut stats = Stats::default();
-        let got = float_decide(sets, &map, &mut simplex, &r.max_abs, &mut stats, true);
+        let got = float_decide(
+            sets,
+            &map,
+            &mut simplex,
+            &r.max_abs,
+            &mut stats,
+            true,
+            &mut Vec::new(),
+        );
         match got {
             Some(FloatAnswer::Described(a, e)) => {
                 prop_assert_eq!(want, Outcome::Described);
