@@ -899,6 +899,14 @@ pub fn level_curve_path(
                 return Some((cmds, 0.0));
             }
             ConicKind::Circle | ConicKind::Ellipse => {
+                if let Some(sagitta) = flat_arc(&conic, from, to, guide, tolerance) {
+                    let cmds = if from == to {
+                        Vec::new()
+                    } else {
+                        vec![PathCommand::Line(to)]
+                    };
+                    return Some((cmds, sagitta));
+                }
                 return ellipse_path(&conic, from, to, guide).map(|c| (c, 0.0));
             }
             ConicKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
@@ -915,6 +923,26 @@ pub fn level_curve_path(
     }
     let trace = trace_curve(poly, from, to, guide)?;
     Some(fit_cubics(poly, &trace, tolerance))
+}
+
+/// A circle or ellipse so large next to the piece that the chord `from → to` is within
+/// `tolerance` of the arc: returns the bound on their distance, the sagitta
+/// `c² / (8 ρ)` for the chord length `c` and the smallest radius of curvature `ρ = b²/a`.
+///
+/// Such curves come from nearly straight pieces (radii of 10⁴–10²² px), where the angles an
+/// exact arc needs lose their precision. Only when the chord is shorter than `ρ` and every
+/// guide point lies beside the chord (within [`GUIDE_MAX_DISTANCE`] of the segment), so
+/// that the piece runs along the short arc; returns `None` otherwise.
+fn flat_arc(conic: &Conic, from: Point, to: Point, guide: &[Point], tolerance: f64) -> Option<f64> {
+    let (_, radii, _) = conic.ellipse_params()?;
+    let (a, b) = (radii.x.max(radii.y), radii.x.min(radii.y));
+    let rho = b * b / a;
+    let c = (to - from).hypot();
+    let sagitta = c * c / (8.0 * rho);
+    let beside = guide
+        .iter()
+        .all(|&g| segment_distance(g, from, to) <= GUIDE_MAX_DISTANCE);
+    (c < rho && sagitta <= tolerance && beside).then_some(sagitta)
 }
 
 /// Exact elliptical arc(s) from `from` to `to`, going the way the guide says.
@@ -2428,6 +2456,64 @@ mod tests {
     }
 
     // ---------------------------------------------------------------- intersections
+
+    /// A huge circle through a short chord is drawn as that chord, within the tolerance; a
+    /// piece running round a circle whose ends are close is not.
+    #[test]
+    fn flat_arcs_become_chords() {
+        // Circle of radius 1e9 centred far below: through (0, 0) and (40, ~0).
+        let r = 1e9;
+        let k = Conic {
+            a: 1.0,
+            b: 0.0,
+            c: 1.0,
+            d: 0.0,
+            e: -2.0 * r,
+            f: 0.0,
+        };
+        let poly = Polynomial::from(k);
+        let from = Point::new(0.0, 0.0);
+        let x1: f64 = 40.0;
+        let to = Point::new(x1, r - (r * r - x1 * x1).sqrt());
+        let guide: Vec<Point> = (1..40).map(|x| Point::new(f64::from(x), 0.3)).collect();
+        let (cmds, err) = level_curve_path(&poly, from, to, &guide, 0.01).unwrap();
+        assert_eq!(cmds, vec![PathCommand::Line(to)]);
+        assert_le(err, 40.0 * 40.0 / (8.0 * r) * 1.0001, "sagitta");
+        // Too tight a tolerance for the sagitta of a radius-1000 circle: an exact arc.
+        let r = 1000.0;
+        let k = Conic {
+            a: 1.0,
+            b: 0.0,
+            c: 1.0,
+            d: 0.0,
+            e: -2.0 * r,
+            f: 0.0,
+        };
+        let poly = Polynomial::from(k);
+        let to = Point::new(x1, r - (r * r - x1 * x1).sqrt());
+        let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.1).unwrap();
+        assert!(matches!(cmds[..], [PathCommand::Arc(_)]), "{cmds:?}");
+        // Round a circle of radius 10 from (0, 0) back near it: the guide is not beside the
+        // chord, so the arc goes round.
+        let r = 10.0;
+        let k = Conic {
+            a: 1.0,
+            b: 0.0,
+            c: 1.0,
+            d: 0.0,
+            e: -2.0 * r,
+            f: 0.0,
+        };
+        let poly = Polynomial::from(k);
+        let at = |phi: f64| Point::new(r * phi.sin(), r - r * phi.cos());
+        let (from, to) = (at(0.0), at(-0.05));
+        let guide: Vec<Point> = (1..60).map(|i| at(f64::from(i) * 0.1)).collect();
+        let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+        assert!(
+            cmds.iter().all(|c| matches!(c, PathCommand::Arc(_))),
+            "{cmds:?}"
+        );
+    }
 
     /// The closed-form bound on conics: a point of the curve (so at least the distance to
     /// the curve) and, for points near the curve, within second order of that distance.
