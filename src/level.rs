@@ -127,10 +127,10 @@ pub fn border_polynomial(
     rule: OutlierRule,
 ) -> Option<(Polynomial, f64)> {
     let (right, left) = piece_outliers(points, piece.first, piece.last, rule);
-    let xy = |p: &Pixel| vec![i64::from(p.x), i64::from(p.y)];
-    let mut low: Vec<Vec<i64>> = points[piece.first..=piece.last].iter().map(xy).collect();
+    let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
+    let mut low: Vec<[i64; 2]> = points[piece.first..=piece.last].iter().map(xy).collect();
     low.extend(left.iter().map(xy));
-    let high: Vec<Vec<i64>> = right.iter().map(xy).collect();
+    let high: Vec<[i64; 2]> = right.iter().map(xy).collect();
     let origin = &piece.certificate.origin;
     let poly = match max_margin_direction(basis, origin, &low, &high, true) {
         Some((a, level)) => polynomial_of(basis, origin, &a, level),

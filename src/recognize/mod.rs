@@ -741,22 +741,25 @@ fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
 }
 
 /// Lifts `points − origin` into a set, raising `max_abs` to bound the liftings. Returns
-/// `None` on overflow.
-fn lift_points(
+/// `None` on overflow or a point (or origin) not of the basis' point dimension.
+fn lift_points<P: AsRef<[i64]>>(
     basis: &dyn Basis,
     origin: &[i64],
-    points: &[Vec<i64>],
+    points: &[P],
     max_abs: &mut [i64],
 ) -> Option<LiftedSet> {
     let (pd, n) = (basis.point_dim(), basis.dim());
     let mut set = LiftedSet::new(pd, n);
     let mut f = vec![0; n];
+    let mut rel = vec![0; pd];
     for p in points {
-        let rel: Vec<i64> = p
-            .iter()
-            .zip(origin)
-            .map(|(a, b)| a.checked_sub(*b))
-            .collect::<Option<_>>()?;
+        let p = p.as_ref();
+        if p.len() != pd || origin.len() != pd {
+            return None;
+        }
+        for (r, (a, b)) in rel.iter_mut().zip(p.iter().zip(origin)) {
+            *r = a.checked_sub(*b)?;
+        }
         basis.lift(&rel, &mut f)?;
         for (m, v) in max_abs.iter_mut().zip(&f) {
             *m = (*m).max(v.saturating_abs());
@@ -796,21 +799,24 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
 /// the line basis, the Euclidean distance in the image).
 ///
 /// Returns `None` if either set is empty, a lifting overflows, or no separation is found.
-pub fn max_margin_direction(
+pub fn max_margin_direction<P: AsRef<[i64]>>(
     basis: &dyn Basis,
     origin: &[i64],
-    low: &[Vec<i64>],
-    high: &[Vec<i64>],
+    low: &[P],
+    high: &[P],
     scaled: bool,
 ) -> Option<(Vec<f64>, f64)> {
     let (pd, n) = (basis.point_dim(), basis.dim());
-    if low.is_empty() || high.is_empty() || origin.len() != pd {
+    if low.is_empty()
+        || high.is_empty()
+        || origin.len() != pd
+        || low.iter().chain(high).any(|p| p.as_ref().len() != pd)
+    {
         return None;
     }
     let mut max_abs = vec![0i64; n];
-    let mut fill = |pts: &[Vec<i64>]| lift_points(basis, origin, pts, &mut max_abs);
-    let low_set = fill(low)?;
-    let high_set = fill(high)?;
+    let low_set = lift_points(basis, origin, low, &mut max_abs)?;
+    let high_set = lift_points(basis, origin, high, &mut max_abs)?;
     let empty = LiftedSet::new(pd, n);
     let scale = if scaled {
         power_of_two_scale(&max_abs)
