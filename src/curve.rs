@@ -13,6 +13,7 @@
 //! All coordinates are absolute SVG coordinates, where pixel `(x, y)` is the unit square
 //! `[x, x+1] × [y, y+1]`. Distances are in pixels.
 
+use crate::pixel::{Pixel, PixelMap};
 use kurbo::{Arc, CubicBez, ParamCurve, ParamCurveNearest, PathEl, Point, QuadBez, SvgArc, Vec2};
 use std::f64::consts::{PI, TAU};
 
@@ -1115,6 +1116,16 @@ fn trace_curve(poly: &Polynomial, from: Point, to: Point, guide: &[Point]) -> Op
         .iter()
         .map(|&w| (w - start).hypot() <= 1.0 || (w - end).hypot() <= 1.0)
         .collect();
+    let mut unvisited = visited.iter().filter(|&&v| !v).count();
+    // The targets by unit cell, so that each step only looks at the targets near it (a
+    // piece may have thousands of them).
+    let cell = |p: Point| Pixel::new(p.x.floor() as i32, p.y.floor() as i32);
+    let mut grid: PixelMap<Vec<usize>> = PixelMap::default();
+    for (k, &w) in targets.iter().enumerate() {
+        if !visited[k] {
+            grid.entry(cell(w)).or_default().push(k);
+        }
+    }
     // Initial orientation: towards the first waypoint not too close to the start.
     let first = targets
         .iter()
@@ -1167,13 +1178,27 @@ fn trace_curve(poly: &Polynomial, from: Point, to: Point, guide: &[Point]) -> Op
             continue;
         };
         let near = (0.2 * h).max(1e-6);
-        for (w, v) in targets.iter().zip(visited.iter_mut()) {
-            if !*v && segment_distance(*w, p, q) <= near {
-                *v = true;
+        if unvisited > 0 {
+            let (lo, hi) = (
+                cell(Point::new(p.x.min(q.x) - near, p.y.min(q.y) - near)),
+                cell(Point::new(p.x.max(q.x) + near, p.y.max(q.y) + near)),
+            );
+            for cy in lo.y..=hi.y {
+                for cx in lo.x..=hi.x {
+                    let Some(ks) = grid.get(&Pixel::new(cx, cy)) else {
+                        continue;
+                    };
+                    for &k in ks {
+                        if !visited[k] && segment_distance(targets[k], p, q) <= near {
+                            visited[k] = true;
+                            unvisited -= 1;
+                        }
+                    }
+                }
             }
         }
         let step_len = (q - p).hypot();
-        if visited.iter().all(|&v| v)
+        if unvisited == 0
             && travelled + step_len >= 0.5 * guide_len
             && segment_distance(end, p, q) <= near
         {
