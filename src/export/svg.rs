@@ -432,16 +432,24 @@ pub fn contour_path(
     let curves = Curves::new(points, pieces, basis, tolerance);
     let mut memo = Memo::new(pieces.len());
     let mut out = build(points, pieces, &curves, &cracked, &mut memo);
+    let on_contour: PixelSet = points.iter().copied().collect();
     for _ in 0..REPAIR_ROUNDS {
-        let bad = misplaced_points(contour, &out.to_bez_path());
+        let bad = misplaced_points(contour, &on_contour, &out.to_bez_path());
         let mut changed = false;
         for i in bad {
-            // The junctions within two points of `i` along the (cyclic) contour.
+            // The junctions within two points of `i` along the (cyclic) contour: junction
+            // `j` lies between `last` and `last + 1` of piece `j`, so `last` is within
+            // `i − 3 ..= i + 2`; the pieces holding those points are found by bisection.
             let cyclic = |p: usize| {
                 let d = p.abs_diff(i);
                 d.min(n - d)
             };
-            for (j, piece) in pieces.iter().enumerate() {
+            for back in 0..6 {
+                let p = (i + n + 2 - back % n) % n;
+                let j = pieces
+                    .partition_point(|piece| piece.last < p)
+                    .min(pieces.len() - 1);
+                let piece = &pieces[j];
                 let near = cyclic(piece.last).min(cyclic((piece.last + 1) % n)) <= 2;
                 if near && !cracked[j] {
                     cracked[j] = true;
@@ -459,10 +467,9 @@ pub fn contour_path(
 
 /// Indices of contour points whose pixel centre, or the centre of one of their RIGHT
 /// (background) 4-neighbours, is on the wrong side of the contour's own closed path.
-fn misplaced_points(contour: &Contour, path: &BezPath) -> Vec<usize> {
+fn misplaced_points(contour: &Contour, on_contour: &PixelSet, path: &BezPath) -> Vec<usize> {
     let points = &contour.points;
     let n = points.len();
-    let on_contour: PixelSet = points.iter().copied().collect();
     let index = RowWinding::new(path);
     let mut bad = Vec::new();
     // Foreground has winding ≠ 0 inside an outer border and 0 inside a hole border.
@@ -713,10 +720,9 @@ fn build(
             out.fallbacks.junction += 1;
         }
     }
-    let cracks: Vec<Vec<Point>> = pieces
-        .iter()
-        .map(|p| crack_polyline(points, p.first, p.last))
-        .collect();
+    // A piece's cracks, only built for the pieces drawn along them (a contour of millions
+    // of pixels would otherwise build them all, every round).
+    let cracks = |k: usize| crack_polyline(points, pieces[k].first, pieces[k].last);
     // Junction j joins piece j (its end) and piece (j + 1) % m (its start).
     let mut ends = vec![Point::ZERO; m];
     let mut starts = vec![Point::ZERO; m];
@@ -758,14 +764,14 @@ fn build(
                     Some(x) => ends[j] = x,
                     None => failed.push(j),
                 },
-                None => ends[j] = cracks[j].last().copied().unwrap_or(mid),
+                None => ends[j] = cracks(j).last().copied().unwrap_or(mid),
             }
             match &polys[k] {
                 Some(pb) => match project(pb, start_target, JUNCTION_MAX_DISTANCE) {
                     Some(x) => starts[k] = x,
                     None => failed.push(k),
                 },
-                None => starts[k] = cracks[k].first().copied().unwrap_or(mid),
+                None => starts[k] = cracks(k).first().copied().unwrap_or(mid),
             }
         }
         if failed.is_empty() {
@@ -779,7 +785,7 @@ fn build(
     }
     for (k, piece) in pieces.iter().enumerate() {
         let Some(poly) = &polys[k] else {
-            b.polyline(&cracks[k]);
+            b.polyline(&cracks(k));
             continue;
         };
         let head = cracked[(k + m - 1) % m];
@@ -812,7 +818,7 @@ fn build(
                 }
                 None => {
                     out.fallbacks.curve += 1;
-                    b.polyline(&cracks[k]);
+                    b.polyline(&cracks(k));
                 }
             }
         }
