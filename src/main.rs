@@ -139,8 +139,11 @@ fn run(args: &Args) -> Result<(), Error> {
     let start = Instant::now();
     if let Some(n) = args.threads {
         // Only fails if a pool exists already, which cannot happen here.
+        // The main thread is one of the workers: with one thread, none is spawned and no
+        // work is handed between threads.
         let _ = rayon::ThreadPoolBuilder::new()
             .num_threads(n.max(1))
+            .use_current_thread()
             .build_global();
     }
     let ipol = args.compat.is_some();
