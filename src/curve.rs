@@ -2486,54 +2486,38 @@ mod tests {
     /// piece running round a circle whose ends are close is not.
     #[test]
     fn flat_arcs_become_chords() {
-        // Circle of radius 1e9 centred far below: through (0, 0) and (40, ~0).
-        let r = 1e9;
-        let k = Conic {
-            a: 1.0,
-            b: 0.0,
-            c: 1.0,
-            d: 0.0,
-            e: -2.0 * r,
-            f: 0.0,
+        // The circle of radius r through the origin, centred at (0, r).
+        let circle = |r: f64| {
+            Polynomial::from(Conic {
+                a: 1.0,
+                b: 0.0,
+                c: 1.0,
+                d: 0.0,
+                e: -2.0 * r,
+                f: 0.0,
+            })
         };
-        let poly = Polynomial::from(k);
         let from = Point::new(0.0, 0.0);
         let x1: f64 = 40.0;
-        let to = Point::new(x1, r - (r * r - x1 * x1).sqrt());
         let guide: Vec<Point> = (1..40).map(|x| Point::new(f64::from(x), 0.3)).collect();
-        let (cmds, err) = level_curve_path(&poly, from, to, &guide, 0.01).unwrap();
+        // Radius 1e9: the chord to (40, ~0) is within the tolerance.
+        let r = 1e9;
+        let to = Point::new(x1, r - (r * r - x1 * x1).sqrt());
+        let (cmds, err) = level_curve_path(&circle(r), from, to, &guide, 0.01).unwrap();
         assert_eq!(cmds, vec![PathCommand::Line(to)]);
         assert_le(err, 40.0 * 40.0 / (8.0 * r) * 1.0001, "sagitta");
         // Too tight a tolerance for the sagitta of a radius-1000 circle: an exact arc.
         let r = 1000.0;
-        let k = Conic {
-            a: 1.0,
-            b: 0.0,
-            c: 1.0,
-            d: 0.0,
-            e: -2.0 * r,
-            f: 0.0,
-        };
-        let poly = Polynomial::from(k);
         let to = Point::new(x1, r - (r * r - x1 * x1).sqrt());
-        let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.1).unwrap();
+        let (cmds, _) = level_curve_path(&circle(r), from, to, &guide, 0.1).unwrap();
         assert!(matches!(cmds[..], [PathCommand::Arc(_)]), "{cmds:?}");
         // Round a circle of radius 10 from (0, 0) back near it: the guide is not beside the
         // chord, so the arc goes round.
         let r = 10.0;
-        let k = Conic {
-            a: 1.0,
-            b: 0.0,
-            c: 1.0,
-            d: 0.0,
-            e: -2.0 * r,
-            f: 0.0,
-        };
-        let poly = Polynomial::from(k);
         let at = |phi: f64| Point::new(r * phi.sin(), r - r * phi.cos());
         let (from, to) = (at(0.0), at(-0.05));
         let guide: Vec<Point> = (1..60).map(|i| at(f64::from(i) * 0.1)).collect();
-        let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+        let (cmds, _) = level_curve_path(&circle(r), from, to, &guide, 0.05).unwrap();
         assert!(
             cmds.iter().all(|c| matches!(c, PathCommand::Arc(_))),
             "{cmds:?}"
