@@ -7,6 +7,7 @@
 //! * "not described" only with points `d_1, …, d_k` of `D` and rational weights
 //!   `λ_i ≥ 0`, `Σ λ_i = 1`, `Σ λ_i d_i = 0`, computed in exact rational arithmetic.
 
+use super::bareiss;
 use super::gjk::{gjk, GjkOutcome, GjkParams};
 use super::scalar::Scalar;
 use super::simplex::Simplex;
@@ -244,8 +245,7 @@ fn barycentric_i128(points: &[Vec<i64>]) -> Result<Option<Vec<BigRational>>, Ove
 fn barycentric_big(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
     let k = points.len();
     let n = points.first()?.len();
-    let rows = n + 1;
-    let mut m: Vec<Vec<BigInt>> = (0..rows)
+    let mut m: Vec<Vec<BigInt>> = (0..=n)
         .map(|r| {
             let mut row: Vec<BigInt> = (0..k)
                 .map(|c| BigInt::from(if r < n { points[c][r] } else { 1 }))
@@ -254,32 +254,7 @@ fn barycentric_big(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
             row
         })
         .collect();
-    let mut prev = BigInt::from(1);
-    for c in 0..k {
-        let p = (c..rows).find(|&r| !m[r][c].is_zero())?; // dependent columns: not independent
-        m.swap(c, p);
-        for r in c + 1..rows {
-            for cc in c + 1..=k {
-                let v = (&m[c][c] * &m[r][cc] - &m[r][c] * &m[c][cc]) / &prev;
-                m[r][cc] = v;
-            }
-            m[r][c] = BigInt::zero();
-        }
-        prev = m[c][c].clone();
-    }
-    // The remaining equations must hold: the origin lies in the affine hull.
-    if (k..rows).any(|r| !m[r][k].is_zero()) {
-        return None;
-    }
-    let d = m[k - 1][k - 1].clone();
-    let mut x: Vec<BigInt> = vec![BigInt::zero(); k];
-    for r in (0..k).rev() {
-        let mut s = &d * &m[r][k];
-        for c in r + 1..k {
-            s -= &m[r][c] * &x[c];
-        }
-        x[r] = s / &m[r][r];
-    }
+    let (x, d) = bareiss::solve(&mut m, k)?;
     Some(
         x.into_iter()
             .map(|v| BigRational::new(v, d.clone()))

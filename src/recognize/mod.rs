@@ -50,6 +50,7 @@
 //! the previous simplex (whose vertices stay points of `D`, since the sets only grow between
 //! removals).
 
+mod bareiss;
 mod conditioning;
 mod exact;
 mod gjk;

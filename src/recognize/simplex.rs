@@ -16,6 +16,7 @@
 //!    (`θ = min_{μ_i ≤ 0} λ_i / (λ_i − μ_i)`), drop the vertices whose weight vanished, and
 //!    repeat.
 
+use super::bareiss;
 use super::scalar::Scalar;
 use super::support::Tag;
 use num_bigint::BigInt;
@@ -322,31 +323,7 @@ pub(crate) fn affine_min_norm_weights_exact(
             row
         })
         .collect();
-    // Bareiss: after step c, a[r][cc] (r, cc > c) is a minor, divisible by the last pivot.
-    let mut prev = BigInt::one();
-    for c in 0..m {
-        let p = (c..m).find(|&r| !a[r][c].is_zero())?;
-        a.swap(c, p);
-        for r in c + 1..m {
-            for cc in c + 1..=m {
-                let v = (&a[c][c] * &a[r][cc] - &a[r][c] * &a[c][cc]) / &prev;
-                a[r][cc] = v;
-            }
-            a[r][c] = BigInt::zero();
-        }
-        prev = a[c][c].clone();
-    }
-    // Back substitution for y = d·t, d = a[m-1][m-1] (= ±det): by Cramer's rule every y_i is
-    // an integer, so each division is exact.
-    let d = prev;
-    let mut y = vec![BigInt::zero(); m];
-    for r in (0..m).rev() {
-        let mut s = &d * &a[r][m];
-        for c in r + 1..m {
-            s -= &a[r][c] * &y[c];
-        }
-        y[r] = s / &a[r][r];
-    }
+    let (y, d) = bareiss::solve(&mut a, m)?;
     let sum_y = y.iter().fold(BigInt::zero(), |s, v| s + v);
     let mut mu = Vec::with_capacity(k);
     mu.push(BigRational::new(&d - sum_y, d.clone()));
