@@ -2487,16 +2487,7 @@ mod tests {
     #[test]
     fn flat_arcs_become_chords() {
         // The circle of radius r through the origin, centred at (0, r).
-        let circle = |r: f64| {
-            Polynomial::from(Conic {
-                a: 1.0,
-                b: 0.0,
-                c: 1.0,
-                d: 0.0,
-                e: -2.0 * r,
-                f: 0.0,
-            })
-        };
+        let circle = |r: f64| Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, -2.0 * r, 0.0));
         let from = Point::new(0.0, 0.0);
         let x1: f64 = 40.0;
         let guide: Vec<Point> = (1..40).map(|x| Point::new(f64::from(x), 0.3)).collect();
@@ -2531,14 +2522,14 @@ mod tests {
         let mut rng = Rng(0x0dd_b1a5_ed5e_ed01);
         let mut checked = 0;
         for _ in 0..300 {
-            let k = Conic {
-                a: rng.range(-1.0, 1.0),
-                b: rng.range(-1.0, 1.0),
-                c: rng.range(-1.0, 1.0),
-                d: rng.range(-20.0, 20.0),
-                e: rng.range(-20.0, 20.0),
-                f: rng.range(-100.0, 100.0),
-            };
+            let k = Conic::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-20.0, 20.0),
+                rng.range(-20.0, 20.0),
+                rng.range(-100.0, 100.0),
+            );
             let poly = Polynomial::from(k);
             for i in 0..10 {
                 let mut p = Point::new(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
