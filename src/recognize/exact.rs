@@ -204,8 +204,9 @@ fn barycentric_i128(points: &[Vec<i64>]) -> Result<Option<Vec<BigRational>>, Ove
                 let v = pivot
                     .checked_mul(m[r * w + cc])
                     .and_then(|x| x.checked_sub(lead.checked_mul(m[c * w + cc])?))
+                    .and_then(|x| x.checked_div(prev))
                     .ok_or(Overflow)?;
-                m[r * w + cc] = v / prev;
+                m[r * w + cc] = v;
             }
             m[r * w + c] = 0;
         }
@@ -224,7 +225,11 @@ fn barycentric_i128(points: &[Vec<i64>]) -> Result<Option<Vec<BigRational>>, Ove
                 .and_then(|t| s.checked_sub(t))
                 .ok_or(Overflow)?;
         }
-        x[r] = s / m[r * w + r];
+        x[r] = s.checked_div(m[r * w + r]).ok_or(Overflow)?;
+    }
+    // (Negations below need values above i128::MIN.)
+    if d == i128::MIN || x.contains(&i128::MIN) {
+        return Err(Overflow);
     }
     Ok(Some(
         x.into_iter()
