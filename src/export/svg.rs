@@ -576,7 +576,19 @@ impl RowWinding {
             cuts.sort_by(f64::total_cmp);
             for w in cuts.windows(2) {
                 let (t0, t1) = (w[0], w[1]);
-                let (ya, yb) = (seg.eval(t0).y, seg.eval(t1).y);
+                // The segment's own end points where they are meant (an evaluation at 1 can
+                // miss the end by an ulp, and a vertex on a centre line would then count twice
+                // or not at all).
+                let y_at = |t: f64| {
+                    if t == 0.0 {
+                        seg.start().y
+                    } else if t == 1.0 {
+                        seg.end().y
+                    } else {
+                        seg.eval(t).y
+                    }
+                };
+                let (ya, yb) = (y_at(t0), y_at(t1));
                 if ya == yb {
                     continue;
                 }
@@ -1048,6 +1060,21 @@ mod tests {
             }
         }
         assert!(checked > 50_000, "only {checked} centres checked");
+        // A vertex exactly on a centre line, reached by a line whose evaluation at 1 misses
+        // it by an ulp: counted once.
+        let mut path = BezPath::new();
+        path.move_to((0.0, -0.969_410_016_966_446_5));
+        path.line_to((10.0, 3.5));
+        path.line_to((10.0, 8.0));
+        path.line_to((0.0, 8.0));
+        path.close_path();
+        let index = RowWinding::new(&path);
+        assert_eq!(
+            index.winding(Point::new(12.5, 3.5)),
+            0,
+            "outside, right of the vertex"
+        );
+        assert_ne!(index.winding(Point::new(5.5, 3.5)), 0, "inside");
     }
 
     fn num(v: f64, p: usize) -> String {
