@@ -865,7 +865,8 @@ fn newton_system(
 /// Returns `None` for non-finite input, a non-positive `tolerance`, a constant polynomial,
 /// `from`/`to` not on the curve (within 0.01), a guide point whose projection fails or (for
 /// parabolas) lies farther than [`GUIDE_MAX_DISTANCE`] from the arc, points on different
-/// hyperbola branches, or a trace that does not reach `to`.
+/// hyperbola branches, a trace that does not reach `to`, or a trace step that no cubic
+/// follows within `tolerance` (it jumps the gap between two branches by a saddle).
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(d <= max)` also rejects NaN distances.
 pub fn level_curve_path(
     poly: &Polynomial,
@@ -923,7 +924,7 @@ pub fn level_curve_path(
         }
     }
     let trace = trace_curve(poly, from, to, guide)?;
-    Some(fit_cubics(poly, &trace, tolerance))
+    fit_cubics(poly, &trace, tolerance)
 }
 
 /// A circle or ellipse so large next to the piece that the chord `from → to` is within
@@ -1398,9 +1399,11 @@ fn best_fit(
 /// Piecewise cubic fit of a trace within `tol`; returns the commands and the maximal error.
 ///
 /// Greedy: from each start, the farthest trace point reachable by one cubic within `tol` is
-/// found by galloping then bisection (a single trace step is always accepted, with its
-/// measured error).
-fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, f64) {
+/// found by galloping then bisection.
+///
+/// Returns None if a single trace step cannot be fitted within `tol`: where the trace
+/// crosses the gap between two branches by a saddle of `f`, its chord is off the curve.
+fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> Option<(Vec<PathCommand>, f64)> {
     let n = trace.pts.len();
     let mut out = Vec::new();
     let mut max_err: f64 = 0.0;
@@ -1448,14 +1451,16 @@ fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> (Vec<PathCommand>, 
                 }
             }
         }
-        // A single trace step is always accepted, with its error measured in full.
-        let best = best.unwrap_or_else(|| best_fit(poly, trace, i, lo, tol, f64::INFINITY));
+        let best = match best {
+            Some(best) => best,
+            None => Some(best_fit(poly, trace, i, lo, tol, tol)).filter(|fit| fit.1 <= tol)?,
+        };
         let end = lo;
         max_err = max_err.max(best.1);
         out.push(PathCommand::Cubic(best.0.p1, best.0.p2, best.0.p3));
         i = end;
     }
-    (out, max_err)
+    Some((out, max_err))
 }
 
 #[cfg(test)]

@@ -112,36 +112,61 @@ fn boundary_pixels(m: &Mask) -> HashSet<Pixel> {
     s
 }
 
+/// The properties of the module doc on one bitmap.
+fn check(p: &Pattern, w: u32, h: u32) -> Result<(), TestCaseError> {
+    let mask = render(p, w, h);
+    let contours = trace(&mask, Convention::Default);
+    let mut covered = HashSet::new();
+    for model in [Model::Line, Model::Circle, Model::Conic, Model::Poly(3)] {
+        let d = decompose(contours.clone(), model, OutlierRule::NotInPiece);
+        prop_assert_eq!(d.stats.undecided, 0);
+        let basis = model.basis();
+        for (c, pieces) in d.contours.iter().zip(&d.pieces) {
+            for piece in pieces {
+                let cert = &piece.certificate;
+                let v = |q: &Pixel| cert.value(&basis, &[q.x as i64, q.y as i64]).unwrap();
+                for q in &c.points[piece.first..=piece.last] {
+                    prop_assert!(cert.lower <= v(q) && v(q) <= cert.upper);
+                    covered.insert(*q);
+                }
+                let (r, l) =
+                    piece_outliers(&c.points, piece.first, piece.last, OutlierRule::NotInPiece);
+                prop_assert!(r.iter().all(|q| v(q) > cert.upper));
+                prop_assert!(l.iter().all(|q| v(q) < cert.lower));
+            }
+        }
+        let out = svg_document(&d, w, h, &SvgOptions::default());
+        let report = fidelity(&out.svg, &mask).expect("the SVG parses and rasterizes");
+        prop_assert_eq!(report.foreground, mask.count_foreground());
+        prop_assert!(report.differing <= report.foreground + u64::from(w) * u64::from(h));
+        prop_assert!(out.max_fit_error <= 0.05 + 1e-9);
+    }
+    prop_assert_eq!(covered, boundary_pixels(&mask));
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(96))]
     #[test]
     fn whole_pipeline(p in pattern(), w in 1u32..=64, h in 1u32..=64) {
-        let mask = render(&p, w, h);
-        let contours = trace(&mask, Convention::Default);
-        let mut covered = HashSet::new();
-        for model in [Model::Line, Model::Circle, Model::Conic, Model::Poly(3)] {
-            let d = decompose(contours.clone(), model, OutlierRule::NotInPiece);
-            prop_assert_eq!(d.stats.undecided, 0);
-            let basis = model.basis();
-            for (c, pieces) in d.contours.iter().zip(&d.pieces) {
-                for piece in pieces {
-                    let cert = &piece.certificate;
-                    let v = |q: &Pixel| cert.value(&basis, &[q.x as i64, q.y as i64]).unwrap();
-                    for q in &c.points[piece.first..=piece.last] {
-                        prop_assert!(cert.lower <= v(q) && v(q) <= cert.upper);
-                        covered.insert(*q);
-                    }
-                    let (r, l) = piece_outliers(&c.points, piece.first, piece.last, OutlierRule::NotInPiece);
-                    prop_assert!(r.iter().all(|q| v(q) > cert.upper));
-                    prop_assert!(l.iter().all(|q| v(q) < cert.lower));
-                }
-            }
-            let out = svg_document(&d, w, h, &SvgOptions::default());
-            let report = fidelity(&out.svg, &mask).expect("the SVG parses and rasterizes");
-            prop_assert_eq!(report.foreground, mask.count_foreground());
-            prop_assert!(report.differing <= report.foreground + u64::from(w) * u64::from(h));
-            prop_assert!(out.max_fit_error <= 0.05 + 1e-9);
-        }
-        prop_assert_eq!(covered, boundary_pixels(&mask));
+        check(&p, w, h)?;
+    }
+}
+
+/// Inputs on which `whole_pipeline` once failed, checked on every run.
+#[test]
+fn past_failures() {
+    // poly:3: a trace step jumped the 0.1 px gap between two branches by a saddle, and its
+    // cubic was accepted with a fit error of 0.32 px (tolerance 0.05).
+    let cases = [(
+        Pattern::Noise {
+            density: 126,
+            seed: 14661649786248384942,
+        },
+        54,
+        15,
+    )];
+    for (p, w, h) in cases {
+        check(&p, w, h).unwrap_or_else(|e| panic!("{p:?} {w}x{h}: {e}"));
     }
 }
