@@ -32,6 +32,14 @@ const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
 /// Largest step (in pixels) of the numerical tracer used by [`level_curve_path`].
 const TRACE_STEP: f64 = 0.25;
 
+/// Largest arc length between consecutive points of a hyperbola's trace
+/// ([`hyperbola_trace`]), in pixels.
+const HYPERBOLA_STEP: f64 = 0.25;
+
+/// Largest turn of the tangent between consecutive points of a hyperbola's trace, in
+/// radians.
+const HYPERBOLA_TURN: f64 = 0.1;
+
 /// Tolerance (in pixels) used by [`PathCommand::to_path_els`] to approximate arcs by cubics.
 pub const ARC_FLATTEN_TOLERANCE: f64 = 1e-3;
 
@@ -915,10 +923,12 @@ pub fn level_curve_path(
             ConicKind::Hyperbola => {
                 let (centre, _, angle) = conic.hyperbola_params()?;
                 let axis = Vec2::from_angle(angle);
-                let (s0, s1) = ((from - centre).dot(axis), (to - centre).dot(axis));
-                if s0 * s1 < 0.0 {
-                    return None;
+                if (from - centre).dot(axis) * (to - centre).dot(axis) < 0.0 {
+                    return None; // different branches
                 }
+                let trace = hyperbola_trace(poly, &conic, from, to, guide)
+                    .or_else(|| trace_curve(poly, from, to, guide))?;
+                return fit_cubics(poly, &trace, tolerance);
             }
             ConicKind::Degenerate => {}
         }
@@ -1098,6 +1108,120 @@ struct Trace {
     tans: Vec<Vec2>,
 }
 
+/// The trace of a hyperbola arc from its parametrisation `centre + R(θ)(σ a cosh s, b sinh s)`
+/// ([`Conic::hyperbola_params`]), with points at most [`HYPERBOLA_STEP`] apart in arc length
+/// and [`HYPERBOLA_TURN`] in direction, and exact tangents, instead of marching along the
+/// curve: between two points of one branch the arc
+/// is unique. The parameter of a point of the curve is `asinh(v / b)`, `v` its coordinate
+/// along the conjugate axis.
+///
+/// Returns `None` (the caller then marches with [`trace_curve`]) where the parametrisation
+/// is not precise to 1e-6 px (huge, nearly parabolic hyperbolas: the coordinates would cancel
+/// at 1e8), where `from == to`, or where a guide point does not lie along the arc: its point
+/// of the curve ([`conic_foot`], else [`project`]) must be within [`GUIDE_MAX_DISTANCE`], on
+/// the branch, and within 1 + 2 [`GUIDE_MAX_DISTANCE`] px of arc length of the arc; or
+/// where the arc is longer than 3 times the guide's path plus 20 px.
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x <= y)` also rejects NaN.
+fn hyperbola_trace(
+    poly: &Polynomial,
+    conic: &Conic,
+    from: Point,
+    to: Point,
+    guide: &[Point],
+) -> Option<Trace> {
+    let (centre, semi, angle) = conic.hyperbola_params()?;
+    if from == to {
+        return None;
+    }
+    let (axis, across) = (Vec2::from_angle(angle), Vec2::from_angle(angle).turn_90());
+    let (a, b) = (semi.x, semi.y);
+    let local = |p: Point| ((p - centre).dot(axis), (p - centre).dot(across));
+    let (u0, v0) = local(from);
+    let (u1, v1) = local(to);
+    let sigma = if u0 + u1 >= 0.0 { 1.0 } else { -1.0 };
+    let (s0, s1) = ((v0 / b).asinh(), (v1 / b).asinh());
+    let reach = centre.to_vec2().hypot() + a * s0.abs().max(s1.abs()).cosh();
+    if !(reach <= 1e8) {
+        return None;
+    }
+    let dir = if s1 >= s0 { 1.0 } else { -1.0 };
+    let speed = |s: f64| (a * s.sinh()).hypot(b * s.cosh());
+    let tangent = |s: f64| {
+        let t = axis * (sigma * a * s.sinh()) + across * (b * s.cosh());
+        t * (dir / t.hypot())
+    };
+    let (lo, hi) = (s0.min(s1), s0.max(s1));
+    for &g in guide {
+        let q = match conic_foot(poly, g) {
+            Some((d, q)) if d <= GUIDE_MAX_DISTANCE => q,
+            _ => project(poly, g, GUIDE_MAX_DISTANCE)?,
+        };
+        let (u, v) = local(q);
+        let sq = (v / b).asinh();
+        let slack = (1.0 + 2.0 * GUIDE_MAX_DISTANCE) / speed(sq);
+        if u * sigma < 0.0 || sq < lo - slack || sq > hi + slack {
+            return None;
+        }
+    }
+    // As in trace_curve, no arc longer than 3 times the guide's path plus 20 px; the
+    // branch turns by less than π in all.
+    let max_len = 3.0 * guide_length(from, guide, to) + 20.0;
+    let max_points = (max_len / HYPERBOLA_STEP + PI / HYPERBOLA_TURN) as usize + 2;
+    let mut pts = vec![from];
+    let mut tans = vec![tangent(s0)];
+    // Steps in s: the arc length is ∫|P′| ds and the tangent turns by ∫ ab / |P′|² ds, with
+    // the speed |P′(s)| = |(a sinh s, b cosh s)| monotonic on each side of the vertex
+    // (s = 0): bounding by the speeds at both ends of a step (or at the vertex, if the
+    // step crosses it) keeps it within
+    // HYPERBOLA_STEP of length and HYPERBOLA_TURN of turn. e = exp(s) is carried by
+    // multiplication, for cosh and sinh without further calls.
+    let (mut s, mut e) = (s0, s0.exp());
+    let speed_at = |e: f64| {
+        let (sh, ch) = (0.5 * (e - 1.0 / e), 0.5 * (e + 1.0 / e));
+        ((a * sh).powi(2) + (b * ch).powi(2)).sqrt()
+    };
+    let step_for =
+        |fast: f64, slow: f64| (HYPERBOLA_STEP / fast).min(HYPERBOLA_TURN * slow * slow / (a * b));
+    loop {
+        if pts.len() > max_points {
+            return None;
+        }
+        let v = speed_at(e);
+        let trial = step_for(v, v);
+        let v_far = speed_at(e * (dir * trial).exp());
+        // Across the vertex the slowest point is the vertex, where |P′| = b.
+        let crosses = s * (s + dir * trial) <= 0.0;
+        let slow = if crosses { b } else { v.min(v_far) };
+        let ds = step_for(v.max(v_far), slow);
+        // The rest in one step if it fits, else in two halves if it fits in two.
+        let rest = (s1 - s) * dir;
+        if !(rest > ds) {
+            break;
+        }
+        let ds = if rest < 2.0 * ds { 0.5 * rest } else { ds };
+        s += dir * ds;
+        e *= (dir * ds).exp();
+        let (sh, ch) = (0.5 * (e - 1.0 / e), 0.5 * (e + 1.0 / e));
+        pts.push(centre + axis * (sigma * a * ch) + across * (b * sh));
+        let t = axis * (sigma * a * sh) + across * (b * ch);
+        tans.push(t * (dir / t.hypot2().sqrt()));
+    }
+    pts.push(to);
+    tans.push(tangent(s1));
+    Some(Trace { pts, tans })
+}
+
+/// Length of the polyline `from`, `guide…`, `to`.
+fn guide_length(from: Point, guide: &[Point], to: Point) -> f64 {
+    let mut len = 0.0;
+    let mut prev = from;
+    for &p in guide.iter().chain(std::iter::once(&to)) {
+        len += (p - prev).hypot();
+        prev = p;
+    }
+    len
+}
+
 /// Distance from `p` to the segment `[a, b]`.
 fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
     let ab = b - a;
@@ -1118,12 +1242,7 @@ fn trace_curve(poly: &Polynomial, from: Point, to: Point, guide: &[Point]) -> Op
         .iter()
         .map(|&g| project(poly, g, GUIDE_MAX_DISTANCE))
         .collect::<Option<_>>()?;
-    let mut guide_len = 0.0;
-    let mut prev = from;
-    for &p in guide.iter().chain(std::iter::once(&to)) {
-        guide_len += (p - prev).hypot();
-        prev = p;
-    }
+    let guide_len = guide_length(from, guide, to);
     if from == to && targets.is_empty() {
         return Some(Trace {
             pts: vec![from],
@@ -2098,6 +2217,64 @@ mod tests {
         // Different branches.
         assert!(level_curve_path(&poly, at(1.0, 0.0), at(-1.0, 0.0), &[], 0.05).is_none());
         eprintln!("hyperbola fit: worst sampled distance {worst:e}");
+    }
+
+    #[test]
+    fn hyperbola_trace_is_on_the_curve_and_fine_enough() {
+        // Semi-axes from the glyph_S piece the marching tracer failed on (a ≈ 0.96,
+        // b ≈ 1.25, an arc far out along the asymptotes), and a wider one.
+        for (a, b, th, t0, t1) in [
+            (0.96, 1.25, 2.57, -2.5, 0.4),
+            (12.0, 8.0, 0.6, -1.5, 2.0),
+            (20.9, 5.1, 0.09, 0.3, -0.8),
+        ] {
+            let (sn, cs) = f64::sin_cos(th);
+            let centre = Point::new(40.0, 30.0);
+            let poly = Polynomial::from_local(
+                &[(2, 0), (1, 1), (0, 2)],
+                &[
+                    cs * cs / (a * a) - sn * sn / (b * b),
+                    2.0 * cs * sn * (1.0 / (a * a) + 1.0 / (b * b)),
+                    sn * sn / (a * a) - cs * cs / (b * b),
+                ],
+                centre,
+                1.0,
+            )
+            .unwrap();
+            let conic = poly.as_conic().unwrap();
+            let at = |t: f64| {
+                let (x, y) = (a * t.cosh(), b * t.sinh());
+                centre + Vec2::new(cs * x - sn * y, sn * x + cs * y)
+            };
+            let guide: Vec<Point> = (1..40)
+                .map(|j| at(t0 + (t1 - t0) * j as f64 / 40.0))
+                .collect();
+            let tr = hyperbola_trace(&poly, &conic, at(t0), at(t1), &guide).expect("trace");
+            assert_point_close(tr.pts[0], at(t0), 0.0, "starts at from");
+            assert_point_close(*tr.pts.last().unwrap(), at(t1), 0.0, "ends at to");
+            for (k, w) in tr.pts.windows(2).enumerate() {
+                assert_le(
+                    poly.distance_estimate(w[1]),
+                    1e-9,
+                    "trace point on the curve",
+                );
+                assert_le((w[1] - w[0]).hypot(), HYPERBOLA_STEP + 1e-9, "step length");
+                let (ta, tb) = (tr.tans[k], tr.tans[k + 1]);
+                assert_close(ta.hypot(), 1.0, 1e-12, "unit tangent");
+                assert_le(
+                    ta.cross(tb).abs().asin(),
+                    HYPERBOLA_TURN + 1e-9,
+                    "turn per step",
+                );
+                assert!((w[1] - w[0]).dot(ta) > 0.0, "tangent along the travel");
+            }
+            // A guide on the other branch, or beyond the arc, is refused.
+            let mirrored: Vec<Point> = guide.iter().map(|&g| centre - (g - centre)).collect();
+            assert!(hyperbola_trace(&poly, &conic, at(t0), at(t1), &mirrored).is_none());
+            let beyond = [at(t1 + (t1 - t0))];
+            assert!(hyperbola_trace(&poly, &conic, at(t0), at(t1), &beyond).is_none());
+            check_fit(&poly, at(t0), at(t1), &guide, 0.05);
+        }
     }
 
     /// 10 Y² − X³ + 300 X − 5000 = 0, i.e. y² = x³ − 3x + 5 at scale 10, around (50, 60).
