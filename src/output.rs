@@ -7,6 +7,10 @@ use std::path::{Path, PathBuf};
 /// Writes `bytes` to `path` through a temporary file in the same directory, renamed over the
 /// target once complete: a failure leaves no partial file. The path `-` means standard output.
 ///
+/// The file is not `fsync`ed before the rename (as potrace, vtracer and most converters do
+/// not): that cost 0.65 ms of wall time per run, a sixth of a glyph's, for durability across
+/// a power cut only, which ext4 and btrfs largely give a rename over an existing file anyway.
+///
 /// Only regular files are replaced. A target that exists and is something else — `/dev/null`,
 /// `/dev/stdout`, a FIFO — is written in place: renaming over it would replace the device
 /// itself (as root, `-o /dev/null` used to turn `/dev/null` into a regular file). A symbolic
@@ -48,7 +52,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
         .unwrap_or_else(|| "output".into());
     let tmp = dir.join(format!(".{name}.{}.layertrace-tmp", std::process::id()));
     let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
+        .and_then(|mut f| f.write_all(bytes))
         .and_then(|()| std::fs::rename(&tmp, &target));
     if let Err(e) = result {
         let _ = std::fs::remove_file(&tmp);
