@@ -784,8 +784,22 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
         first_separation: false,
         ..FLOAT_PARAMS
     };
-    let GjkOutcome::Separated { direction, .. } = gjk(&mut support, &mut simplex, &params).0 else {
-        return None;
+    let direction = match gjk(&mut support, &mut simplex, &params).0 {
+        GjkOutcome::Separated { direction, .. } => direction,
+        // A run can stall short of the 1e-12 relative gap (near-degenerate sets, such as a
+        // conic piece turning a right-angled corner: the comb's teeth stalled at 1e-9)
+        // while its closest point already separates the sets with nearly the largest
+        // margin: keep it when its support point lies strictly beyond the origin.
+        GjkOutcome::Stalled => {
+            let x = simplex.point(scale.len())?;
+            let s = support.support_point(&x)?;
+            let xs: f64 = x.iter().zip(&s.point).map(|(a, b)| a * b).sum();
+            if !(xs > 0.0 && x.iter().all(|v| v.is_finite())) {
+                return None;
+            }
+            x
+        }
+        _ => return None,
     };
     Some(map.pull_back(&direction))
 }
