@@ -359,6 +359,8 @@ struct Builder {
     start: Option<Point>,
     pen: Point,
     commands: Vec<PathCommand>,
+    /// Where the last command began, when it is a line (to merge the next, collinear one).
+    line_from: Option<Point>,
 }
 
 impl Builder {
@@ -367,9 +369,12 @@ impl Builder {
             start: None,
             pen: Point::ZERO,
             commands: Vec::new(),
+            line_from: None,
         }
     }
 
+    /// A line to `p`; one that continues the previous line in the same direction (exactly:
+    /// pixel cracks along a row or column) extends it instead.
     fn goto(&mut self, p: Point) {
         match self.start {
             None => {
@@ -378,7 +383,20 @@ impl Builder {
             }
             Some(_) => {
                 if (p - self.pen).hypot() > 1e-9 {
-                    self.commands.push(PathCommand::Line(p));
+                    let (d0, d1) = (self.pen - self.line_from.unwrap_or(p), p - self.pen);
+                    match self.commands.last_mut() {
+                        Some(PathCommand::Line(end))
+                            if self.line_from.is_some()
+                                && d0.cross(d1) == 0.0
+                                && d0.dot(d1) > 0.0 =>
+                        {
+                            *end = p;
+                        }
+                        _ => {
+                            self.line_from = Some(self.pen);
+                            self.commands.push(PathCommand::Line(p));
+                        }
+                    }
                     self.pen = p;
                 }
             }
@@ -395,6 +413,7 @@ impl Builder {
         for c in cmds {
             self.pen = c.end();
             self.commands.push(c);
+            self.line_from = None;
         }
     }
 }
@@ -1198,5 +1217,35 @@ mod tests {
             },
         );
         assert!(out.svg.ends_with("</svg>\n"));
+    }
+
+    #[test]
+    fn collinear_lines_merge_and_turns_do_not() {
+        let mut b = Builder::new();
+        let p = |x: f64, y: f64| Point::new(x, y);
+        b.polyline(&[
+            p(0.0, 0.0),
+            p(0.0, 1.0),
+            p(0.0, 2.0),
+            p(0.0, 3.0),
+            p(1.0, 3.0),
+        ]);
+        b.polyline(&[p(2.0, 3.0), p(1.5, 3.0), p(1.5, 4.0)]);
+        b.extend(vec![PathCommand::Line(p(1.5, 5.0))]);
+        b.goto(p(1.5, 6.0));
+        let ends: Vec<Point> = b.commands.iter().map(|c| c.end()).collect();
+        // Down the column in one line; the turn, the reversal along the row and the line
+        // after a command added whole are kept.
+        assert_eq!(
+            ends,
+            vec![
+                p(0.0, 3.0),
+                p(2.0, 3.0),
+                p(1.5, 3.0),
+                p(1.5, 4.0),
+                p(1.5, 5.0),
+                p(1.5, 6.0)
+            ]
+        );
     }
 }
