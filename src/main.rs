@@ -62,6 +62,12 @@ struct Args {
     #[arg(long, value_name = "PX", default_value_t = 0.05)]
     tolerance: f64,
 
+    /// Draw a piece along its pixel edges when its curve passes closer than this (pixels,
+    /// plus half the coordinate rounding) to a pixel centre, which renderers working on a
+    /// 1/64 px grid could paint on either side; 0 keeps every curve (smaller SVG).
+    #[arg(long, value_name = "PX", default_value_t = 1.0 / 64.0)]
+    min_clearance: f64,
+
     /// Write the pieces and their exact equations as JSON ('-' for standard output).
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
@@ -198,6 +204,7 @@ fn run(args: &Args) -> Result<(), Error> {
             fill: args.fill.clone(),
             precision: args.precision,
             tolerance: args.tolerance,
+            min_clearance: args.min_clearance,
         };
         let out = svg_document(&d, mask.width(), mask.height(), &opts);
         if let Some(path) = &args.output {

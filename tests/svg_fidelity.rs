@@ -75,7 +75,7 @@ fn arcs_around(d: &Decomposition, centre: Point, radius: f64) -> (Vec<Arc>, usiz
                 })
         })
         .expect("a contour around the shape");
-    let path = contour_path(contour, &d.pieces[k], &basis, 0.05);
+    let path = contour_path(contour, &d.pieces[k], &basis, 0.05, 0.0);
     let mut pen = path.start;
     let mut arcs = Vec::new();
     for c in &path.commands {
@@ -287,8 +287,8 @@ fn crack_outlines_are_exact() {
 /// Largest number of differing pixels measured for each sample and model.
 const BOUNDS: &[(&str, Model, u64)] = &[
     ("digits_liberationsans_cap40", Model::Line, 3),
-    ("digits_liberationsans_cap40", Model::Circle, 2),
-    ("digits_liberationsans_cap40", Model::Conic, 5),
+    ("digits_liberationsans_cap40", Model::Circle, 0),
+    ("digits_liberationsans_cap40", Model::Conic, 3),
     ("glyph_S_dejavusans_cap120", Model::Line, 0),
     ("glyph_S_dejavusans_cap120", Model::Circle, 0),
     ("glyph_S_dejavusans_cap120", Model::Conic, 0),
@@ -296,20 +296,20 @@ const BOUNDS: &[(&str, Model, u64)] = &[
     ("glyph_at_dejavusans_cap40", Model::Circle, 0),
     ("glyph_at_dejavusans_cap40", Model::Conic, 0),
     ("glyph_g_liberationserif_cap120", Model::Line, 1),
-    ("glyph_g_liberationserif_cap120", Model::Circle, 1),
+    ("glyph_g_liberationserif_cap120", Model::Circle, 0),
     ("glyph_g_liberationserif_cap120", Model::Conic, 0),
-    ("lineart_cat_symbola_h300", Model::Line, 6),
-    ("lineart_cat_symbola_h300", Model::Circle, 16),
-    ("lineart_cat_symbola_h300", Model::Conic, 5),
-    ("sil_horse_skimage", Model::Line, 6),
-    ("sil_horse_skimage", Model::Circle, 16),
-    ("sil_horse_skimage", Model::Conic, 4),
-    ("suits_black_dejavusans_cap120", Model::Line, 2),
-    ("suits_black_dejavusans_cap120", Model::Circle, 7),
-    ("suits_black_dejavusans_cap120", Model::Conic, 4),
-    ("syn_big3000_many_shapes", Model::Line, 75),
-    ("syn_big3000_many_shapes", Model::Circle, 160),
-    ("syn_big3000_many_shapes", Model::Conic, 107),
+    ("lineart_cat_symbola_h300", Model::Line, 4),
+    ("lineart_cat_symbola_h300", Model::Circle, 1),
+    ("lineart_cat_symbola_h300", Model::Conic, 0),
+    ("sil_horse_skimage", Model::Line, 2),
+    ("sil_horse_skimage", Model::Circle, 5),
+    ("sil_horse_skimage", Model::Conic, 1),
+    ("suits_black_dejavusans_cap120", Model::Line, 0),
+    ("suits_black_dejavusans_cap120", Model::Circle, 0),
+    ("suits_black_dejavusans_cap120", Model::Conic, 0),
+    ("syn_big3000_many_shapes", Model::Line, 15),
+    ("syn_big3000_many_shapes", Model::Circle, 14),
+    ("syn_big3000_many_shapes", Model::Conic, 16),
     ("syn_border_touching", Model::Line, 0),
     ("syn_border_touching", Model::Circle, 0),
     ("syn_border_touching", Model::Conic, 0),
@@ -317,22 +317,22 @@ const BOUNDS: &[(&str, Model, u64)] = &[
     ("syn_digital_circle_1px", Model::Circle, 0),
     ("syn_digital_circle_1px", Model::Conic, 0),
     ("syn_discs_r3_to_r200", Model::Line, 3),
-    ("syn_discs_r3_to_r200", Model::Circle, 24),
-    ("syn_discs_r3_to_r200", Model::Conic, 63),
-    ("syn_ellipses_rotated", Model::Line, 3),
-    ("syn_ellipses_rotated", Model::Circle, 9),
-    ("syn_ellipses_rotated", Model::Conic, 1),
+    ("syn_discs_r3_to_r200", Model::Circle, 2),
+    ("syn_discs_r3_to_r200", Model::Conic, 35),
+    ("syn_ellipses_rotated", Model::Line, 1),
+    ("syn_ellipses_rotated", Model::Circle, 0),
+    ("syn_ellipses_rotated", Model::Conic, 0),
     ("syn_fig15_ellipse_two_holes", Model::Line, 0),
-    ("syn_fig15_ellipse_two_holes", Model::Circle, 9),
-    ("syn_fig15_ellipse_two_holes", Model::Conic, 12),
-    ("syn_polygons_sharp", Model::Line, 19),
-    ("syn_polygons_sharp", Model::Circle, 18),
-    ("syn_polygons_sharp", Model::Conic, 15),
+    ("syn_fig15_ellipse_two_holes", Model::Circle, 0),
+    ("syn_fig15_ellipse_two_holes", Model::Conic, 9),
+    ("syn_polygons_sharp", Model::Line, 4),
+    ("syn_polygons_sharp", Model::Circle, 4),
+    ("syn_polygons_sharp", Model::Conic, 0),
     ("syn_tiny_blobs", Model::Line, 0),
     ("syn_tiny_blobs", Model::Circle, 0),
     ("syn_tiny_blobs", Model::Conic, 0),
     ("word_Layers_dejavusans-bold_cap40", Model::Line, 1),
-    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 1),
+    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 0),
     ("word_Layers_dejavusans-bold_cap40", Model::Conic, 0),
 ];
 
@@ -365,4 +365,43 @@ fn sample_fidelity_does_not_regress() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A comb (a bar and 20-pixel teeth every 40 pixels) is rectilinear, so every model's pieces
+/// turn right-angled corners, where the separating curves pass within thousandths of a pixel
+/// of pixel centres. With the default minimum clearance those pieces are drawn along their
+/// pixel edges (merged into one `L` per straight run) and the round trip is exact; without
+/// it, 50 (line), 191 (circle) pixels differed at 400×400 and the conic model gave 2264
+/// before the largest-margin fix.
+#[test]
+fn comb_is_exact_with_the_default_clearance() {
+    let mut mask = Mask::new(400, 400);
+    for y in 0..400i64 {
+        for x in 0..400i64 {
+            let ink = (10..390).contains(&x)
+                && ((10..60).contains(&y) || ((10..390).contains(&y) && x % 40 < 20));
+            mask.set(x, y, ink);
+        }
+    }
+    for model in [Model::Line, Model::Circle, Model::Conic] {
+        let out = svg_document(
+            &decomposition(&mask, model),
+            400,
+            400,
+            &SvgOptions::default(),
+        );
+        let actual = rasterize_svg(&out.svg, 400, 400).expect("rasterizes");
+        let r = compare(&mask, &actual);
+        if r.differing > 0 {
+            let at = save_failure(&format!("comb_{model}"), &mask, &actual);
+            panic!("comb {model}: {} differing; see {at}", r.differing);
+        }
+        // The outline has 2 · 10 + 2 straight sides per tooth row: far fewer commands than
+        // its 4 000 boundary pixels.
+        assert!(
+            out.commands.total() < 600,
+            "comb {model}: {} commands",
+            out.commands.total()
+        );
+    }
 }

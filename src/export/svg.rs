@@ -82,6 +82,12 @@ pub struct SvgOptions {
     /// Largest distance (pixels) of fitted cubic Béziers to the true curve (hyperbolas,
     /// degenerate conics, degree > 2). Default 0.05.
     pub tolerance: f64,
+    /// A piece whose border curve passes closer than this (pixels) to a pixel centre, plus
+    /// half the rounding step of [`precision`](SvgOptions::precision), is drawn along its
+    /// pixel edges: renderers truncate vertices to a fixed-point grid (tiny-skia and Skia to
+    /// 1/64 px) and would paint such a centre on either side. Default 1/64; 0 draws every
+    /// curve that the exact checks accept (smaller files, a few pixels off when rendered).
+    pub min_clearance: f64,
 }
 
 impl Default for SvgOptions {
@@ -90,6 +96,7 @@ impl Default for SvgOptions {
             fill: "black".into(),
             precision: 3,
             tolerance: 0.05,
+            min_clearance: 1.0 / 64.0,
         }
     }
 }
@@ -134,6 +141,9 @@ pub struct FallbackCounts {
     pub zero_certificate: usize,
     /// [`border_polynomial`] gave no polynomial.
     pub no_polynomial: usize,
+    /// The border curve passes closer to a pixel centre than the minimum clearance
+    /// ([`SvgOptions::min_clearance`]).
+    pub thin: usize,
     /// The curve has no point within [`JUNCTION_MAX_DISTANCE`] of a junction.
     pub junction: usize,
     /// [`level_curve_path`] could not draw the curve between the junctions, or the curve
@@ -149,6 +159,7 @@ impl FallbackCounts {
     pub fn total(&self) -> usize {
         self.zero_certificate
             + self.no_polynomial
+            + self.thin
             + self.junction
             + self.curve
             + self.invalid_pieces
@@ -157,6 +168,7 @@ impl FallbackCounts {
     fn add(&mut self, o: &FallbackCounts) {
         self.zero_certificate += o.zero_certificate;
         self.no_polynomial += o.no_polynomial;
+        self.thin += o.thin;
         self.junction += o.junction;
         self.curve += o.curve;
         self.invalid_pieces += o.invalid_pieces;
@@ -422,7 +434,8 @@ impl Builder {
 const REPAIR_ROUNDS: usize = 4;
 
 /// The closed path of one contour decomposed into `pieces` described in `basis`; fitted
-/// cubics stay within `tolerance` pixels of their curve. See the
+/// cubics stay within `tolerance` pixels of their curve, and pieces whose curve passes
+/// closer than `min_clearance` to a pixel centre are drawn along their pixel edges. See the
 /// module documentation of `export::svg` (in the source) for joins, fallbacks and the
 /// repair of junctions.
 pub fn contour_path(
@@ -430,6 +443,7 @@ pub fn contour_path(
     pieces: &[Piece],
     basis: &dyn Basis,
     tolerance: f64,
+    min_clearance: f64,
 ) -> ContourPath {
     let points = &contour.points;
     let n = points.len();
@@ -448,7 +462,7 @@ pub fn contour_path(
     }
     let mut cracked = vec![false; pieces.len()];
     // The border curves do not depend on the repairs: computed once.
-    let curves = Curves::new(points, pieces, basis, tolerance);
+    let curves = Curves::new(points, pieces, basis, tolerance, min_clearance);
     let mut memo = Memo::new(pieces.len());
     let mut out = build(points, pieces, &curves, &cracked, &mut memo);
     let on_contour: PixelSet = points.iter().copied().collect();
@@ -660,21 +674,30 @@ impl RowWinding {
 
 /// The border curve of every piece of a contour, with the fitting tolerance it allows.
 struct Curves {
-    /// The curve, or `None` (zero certificate, or no polynomial).
+    /// The curve, or `None` (zero certificate, no polynomial, or too thin a clearance).
     polys: Vec<Option<Polynomial>>,
     /// min(tolerance, clearance / 2), at least 1/1000 px; `tolerance` without a curve.
     tolerances: Vec<f64>,
     zero_certificate: usize,
     no_polynomial: usize,
+    /// Curves dropped for passing closer than the minimum clearance to a pixel centre.
+    thin: usize,
 }
 
 impl Curves {
-    fn new(points: &[Pixel], pieces: &[Piece], basis: &dyn Basis, tolerance: f64) -> Curves {
+    fn new(
+        points: &[Pixel],
+        pieces: &[Piece],
+        basis: &dyn Basis,
+        tolerance: f64,
+        min_clearance: f64,
+    ) -> Curves {
         let mut c = Curves {
             polys: Vec::with_capacity(pieces.len()),
             tolerances: Vec::with_capacity(pieces.len()),
             zero_certificate: 0,
             no_polynomial: 0,
+            thin: 0,
         };
         for p in pieces {
             if p.certificate.is_zero() {
@@ -684,6 +707,11 @@ impl Curves {
                 continue;
             }
             match border_polynomial(basis, points, p, OutlierRule::NotInPiece) {
+                Some((_, clearance)) if clearance < min_clearance => {
+                    c.thin += 1;
+                    c.polys.push(None);
+                    c.tolerances.push(tolerance);
+                }
                 Some((poly, clearance)) => {
                     // Fitted cubics must not cross a pixel centre: stay within half the
                     // clearance (at least 1/1000 px), and never beyond the asked tolerance.
@@ -738,6 +766,7 @@ fn build(
     let m = pieces.len();
     out.fallbacks.zero_certificate = curves.zero_certificate;
     out.fallbacks.no_polynomial = curves.no_polynomial;
+    out.fallbacks.thin = curves.thin;
     let tolerances = &curves.tolerances;
     let mut polys = curves.polys.clone();
     let pixel_cracks = |i: usize| crack_polyline(points, i, i);
@@ -982,6 +1011,12 @@ pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOption
     } else {
         SvgOptions::default().tolerance
     };
+    // The clearance asked for, plus half the rounding step of the numbers written.
+    let min_clearance = match opts.min_clearance {
+        m if m > 0.0 && m.is_finite() => m + 0.5 * 10f64.powi(-(precision as i32)),
+        0.0 => 0.0,
+        _ => SvgOptions::default().min_clearance + 0.5 * 10f64.powi(-(precision as i32)),
+    };
     let mut data = String::new();
     let mut commands = CommandCounts::default();
     let mut fallbacks = FallbackCounts::default();
@@ -996,7 +1031,7 @@ pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOption
         .enumerate()
         .map(|(i, contour)| {
             let pieces = d.pieces.get(i).unwrap_or(&empty);
-            contour_path(contour, pieces, &basis, tolerance)
+            contour_path(contour, pieces, &basis, tolerance, min_clearance)
         })
         .collect();
     for cp in &paths {
@@ -1194,7 +1229,7 @@ mod tests {
         for p in d.pieces[0].iter_mut() {
             p.last += 7;
         }
-        let cp = contour_path(&d.contours[0], &d.pieces[0], &basis, 0.05);
+        let cp = contour_path(&d.contours[0], &d.pieces[0], &basis, 0.05, 0.0);
         assert_eq!(cp.fallbacks.invalid_pieces, 1);
         let svg = format!(
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"2\" height=\"2\"><path d=\"{}\"/></svg>",
@@ -1206,7 +1241,9 @@ mod tests {
             hole: false,
             closed: true,
         };
-        assert!(contour_path(&empty, &[], &basis, 0.05).commands.is_empty());
+        assert!(contour_path(&empty, &[], &basis, 0.05, 0.0)
+            .commands
+            .is_empty());
         let out = svg_document(
             &d,
             2,
