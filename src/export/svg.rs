@@ -676,7 +676,8 @@ impl RowWinding {
 struct Curves {
     /// The curve, or `None` (zero certificate, no polynomial, or too thin a clearance).
     polys: Vec<Option<Polynomial>>,
-    /// min(tolerance, clearance / 2), at least 1/1000 px; `tolerance` without a curve.
+    /// min(tolerance, clearance / 2, clearance − min_clearance), at least 1/1000 px;
+    /// `tolerance` without a curve.
     tolerances: Vec<f64>,
     zero_certificate: usize,
     no_polynomial: usize,
@@ -713,10 +714,13 @@ impl Curves {
                     c.tolerances.push(tolerance);
                 }
                 Some((poly, clearance)) => {
-                    // Fitted cubics must not cross a pixel centre: stay within half the
-                    // clearance (at least 1/1000 px), and never beyond the asked tolerance.
+                    // Fitted cubics must not cross a pixel centre, nor come closer to one
+                    // than the minimum clearance: stay within half the clearance and within
+                    // the clearance left above the minimum (at least 1/1000 px), and never
+                    // beyond the asked tolerance.
                     c.polys.push(Some(poly));
-                    c.tolerances.push((clearance / 2.0).clamp(1e-3, tolerance));
+                    let room = (clearance / 2.0).min(clearance - min_clearance);
+                    c.tolerances.push(room.clamp(1e-3, tolerance));
                 }
                 None => {
                     c.no_polynomial += 1;
