@@ -178,3 +178,34 @@ fn deterministic_across_runs_and_threads() {
         }
     }
 }
+
+/// `-o /dev/stdout` into a file a shell opened for appending (`>> out.svg`): what was there
+/// stays, the SVG follows it (renaming over `/dev/stdout`'s target used to replace the file).
+#[cfg(target_os = "linux")]
+#[test]
+fn output_to_redirected_stdout_appends() {
+    let dir = std::env::temp_dir().join(format!("layertrace-stdout-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("out.svg");
+    std::fs::write(&out, "HEAD\n").unwrap();
+    let file = std::fs::OpenOptions::new().append(true).open(&out).unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_layertrace"))
+        .args([
+            "samples/glyph_at_dejavusans_cap40.png",
+            "-o",
+            "/dev/stdout",
+            "-q",
+        ])
+        .stdout(file)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        text.starts_with("HEAD\n<svg "),
+        "{}",
+        &text[..text.len().min(80)]
+    );
+    assert!(text.trim_end().ends_with("</svg>"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
