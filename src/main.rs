@@ -63,9 +63,9 @@ struct Args {
     tolerance: f64,
 
     /// Draw a piece along its pixel edges when its curve passes closer than this (pixels,
-    /// plus half the coordinate rounding) to a pixel centre, which renderers working on a
+    /// plus the coordinate rounding) to a pixel centre, which renderers working on a
     /// 1/64 px grid could paint on either side; 0 keeps every curve (smaller SVG).
-    #[arg(long, value_name = "PX", default_value_t = 1.0 / 64.0)]
+    #[arg(long, value_name = "PX", default_value_t = 1.0 / 64.0, value_parser = parse_clearance)]
     min_clearance: f64,
 
     /// Write the pieces and their exact equations as JSON ('-' for standard output).
@@ -119,6 +119,13 @@ fn parse_model(s: &str) -> Result<Model, String> {
         return Err("3D models apply to point sets, not to images".into());
     }
     Ok(m)
+}
+
+fn parse_clearance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v >= 0.0 => Ok(v),
+        _ => Err(format!("'{s}' is not a distance in pixels (a number >= 0)")),
+    }
 }
 
 fn parse_threshold(s: &str) -> Result<Threshold, String> {

@@ -83,10 +83,12 @@ pub struct SvgOptions {
     /// degenerate conics, degree > 2). Default 0.05.
     pub tolerance: f64,
     /// A piece whose border curve passes closer than this (pixels) to a pixel centre, plus
-    /// half the rounding step of [`precision`](SvgOptions::precision), is drawn along its
-    /// pixel edges: renderers truncate vertices to a fixed-point grid (tiny-skia and Skia to
-    /// 1/64 px) and would paint such a centre on either side. Default 1/64; 0 draws every
-    /// curve that the exact checks accept (smaller files, a few pixels off when rendered).
+    /// how far rounding to [`precision`](SvgOptions::precision) decimals moves a point
+    /// (`√2/2 · 10^−precision`), is drawn along its pixel edges: renderers truncate vertices
+    /// to a fixed-point grid (tiny-skia and Skia to 1/64 px) and would paint such a centre
+    /// on either side. Default 1/64; 0 draws every curve that the exact checks accept
+    /// (smaller files, a few pixels off when rendered); infinity draws every piece along its
+    /// pixel edges. Negative or NaN values mean the default.
     pub min_clearance: f64,
 }
 
@@ -1015,11 +1017,12 @@ pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOption
     } else {
         SvgOptions::default().tolerance
     };
-    // The clearance asked for, plus half the rounding step of the numbers written.
+    // The clearance asked for, plus how far rounding the numbers written moves a point.
+    let rounding = std::f64::consts::FRAC_1_SQRT_2 * 10f64.powi(-(precision as i32));
     let min_clearance = match opts.min_clearance {
-        m if m > 0.0 && m.is_finite() => m + 0.5 * 10f64.powi(-(precision as i32)),
         0.0 => 0.0,
-        _ => SvgOptions::default().min_clearance + 0.5 * 10f64.powi(-(precision as i32)),
+        m if m > 0.0 => m + rounding,
+        _ => SvgOptions::default().min_clearance + rounding,
     };
     let mut data = String::new();
     let mut commands = CommandCounts::default();
