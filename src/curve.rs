@@ -1116,11 +1116,13 @@ struct Trace {
 /// along the conjugate axis.
 ///
 /// Returns `None` (the caller then marches with [`trace_curve`]) where the parametrisation
-/// is not precise to 1e-6 px (huge, nearly parabolic hyperbolas: the coordinates would cancel
-/// at 1e8), where `from == to`, or where a guide point does not lie along the arc: its point
-/// of the curve ([`conic_foot`], else [`project`]) must be within [`GUIDE_MAX_DISTANCE`], on
-/// the branch, and within 1 + 2 [`GUIDE_MAX_DISTANCE`] px of arc length of the arc; or
-/// where the arc is longer than 3 times the guide's path plus 20 px.
+/// is not precise (coordinates beyond 1e8 px, or the middle trace point more than 1e-6 px
+/// off the curve, as for huge, nearly parabolic hyperbolas), where `from == to`, or where a
+/// guide point does not lie along the arc: its point of the curve ([`conic_foot`], else
+/// [`project`]) must be within [`GUIDE_MAX_DISTANCE`], on the branch, and within
+/// 1 + 2 [`GUIDE_MAX_DISTANCE`] px of arc length of the arc; or where the trace needs more
+/// than four times the points of an arc of 3 times the guide's path plus 20 px (a safety
+/// cap, as the marcher's).
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x <= y)` also rejects NaN.
 fn hyperbola_trace(
     poly: &Polynomial,
@@ -1145,11 +1147,13 @@ fn hyperbola_trace(
         return None;
     }
     let dir = if s1 >= s0 { 1.0 } else { -1.0 };
-    let speed = |s: f64| (a * s.sinh()).hypot(b * s.cosh());
-    let tangent = |s: f64| {
-        let t = axis * (sigma * a * s.sinh()) + across * (b * s.cosh());
+    // Speed |P′(s)| and unit tangent from (sinh s, cosh s).
+    let speed = |(sh, ch): (f64, f64)| ((a * sh).powi(2) + (b * ch).powi(2)).sqrt();
+    let tangent = |(sh, ch): (f64, f64)| {
+        let t = axis * (sigma * a * sh) + across * (b * ch);
         t * (dir / t.hypot())
     };
+    let sinh_cosh = |s: f64| (s.sinh(), s.cosh());
     let (lo, hi) = (s0.min(s1), s0.max(s1));
     for &g in guide {
         let q = match conic_foot(poly, g) {
@@ -1158,7 +1162,7 @@ fn hyperbola_trace(
         };
         let (u, v) = local(q);
         let sq = (v / b).asinh();
-        let slack = (1.0 + 2.0 * GUIDE_MAX_DISTANCE) / speed(sq);
+        let slack = (1.0 + 2.0 * GUIDE_MAX_DISTANCE) / speed(sinh_cosh(sq));
         if u * sigma < 0.0 || sq < lo - slack || sq > hi + slack {
             return None;
         }
@@ -1166,9 +1170,9 @@ fn hyperbola_trace(
     // As in trace_curve, no arc longer than 3 times the guide's path plus 20 px; the
     // branch turns by less than π in all.
     let max_len = 3.0 * guide_length(from, guide, to) + 20.0;
-    let max_points = (max_len / HYPERBOLA_STEP + PI / HYPERBOLA_TURN) as usize + 2;
+    let max_points = (4.0 * (max_len / HYPERBOLA_STEP + PI / HYPERBOLA_TURN)) as usize + 2;
     let mut pts = vec![from];
-    let mut tans = vec![tangent(s0)];
+    let mut tans = vec![tangent(sinh_cosh(s0))];
     // Steps in s: the arc length is ∫|P′| ds and the tangent turns by ∫ ab / |P′|² ds, with
     // the speed |P′(s)| = |(a sinh s, b cosh s)| monotonic on each side of the vertex
     // (s = 0): bounding by the speeds at both ends of a step (or at the vertex, if the
@@ -1176,10 +1180,8 @@ fn hyperbola_trace(
     // HYPERBOLA_STEP of length and HYPERBOLA_TURN of turn. e = exp(s) is carried by
     // multiplication, for cosh and sinh without further calls.
     let (mut s, mut e) = (s0, s0.exp());
-    let speed_at = |e: f64| {
-        let (sh, ch) = (0.5 * (e - 1.0 / e), 0.5 * (e + 1.0 / e));
-        ((a * sh).powi(2) + (b * ch).powi(2)).sqrt()
-    };
+    let from_exp = |e: f64| (0.5 * (e - 1.0 / e), 0.5 * (e + 1.0 / e));
+    let speed_at = |e: f64| speed(from_exp(e));
     let step_for =
         |fast: f64, slow: f64| (HYPERBOLA_STEP / fast).min(HYPERBOLA_TURN * slow * slow / (a * b));
     loop {
@@ -1201,13 +1203,15 @@ fn hyperbola_trace(
         let ds = if rest < 2.0 * ds { 0.5 * rest } else { ds };
         s += dir * ds;
         e *= (dir * ds).exp();
-        let (sh, ch) = (0.5 * (e - 1.0 / e), 0.5 * (e + 1.0 / e));
+        let (sh, ch) = from_exp(e);
         pts.push(centre + axis * (sigma * a * ch) + across * (b * sh));
-        let t = axis * (sigma * a * sh) + across * (b * ch);
-        tans.push(t * (dir / t.hypot2().sqrt()));
+        tans.push(tangent((sh, ch)));
+    }
+    if pts.len() > 2 && !(poly.distance_estimate(pts[pts.len() / 2]) <= 1e-6) {
+        return None;
     }
     pts.push(to);
-    tans.push(tangent(s1));
+    tans.push(tangent(sinh_cosh(s1)));
     Some(Trace { pts, tans })
 }
 
@@ -2275,6 +2279,25 @@ mod tests {
             assert!(hyperbola_trace(&poly, &conic, at(t0), at(t1), &beyond).is_none());
             check_fit(&poly, at(t0), at(t1), &guide, 0.05);
         }
+    }
+
+    #[test]
+    fn a_trace_step_across_a_saddle_is_not_fitted() {
+        // x² − y² = 0.01: the branches' vertices (±0.1, 0) face each other across the
+        // saddle at the origin; a trace step from one to the other runs 0.1 px off the curve.
+        let poly =
+            Polynomial::from_local(&[(2, 0), (0, 2)], &[1.0, -1.0], Point::ORIGIN, 0.01).unwrap();
+        let (p, q) = (Point::new(-0.1, 0.0), Point::new(0.1, 0.0));
+        assert_le(poly.distance_estimate(p), 1e-12, "on the curve");
+        let across = Trace {
+            pts: vec![p, q],
+            tans: vec![Vec2::new(1.0, 0.0); 2],
+        };
+        assert!(fit_cubics(&poly, &across, 0.05).is_none());
+        // The same step is accepted at a tolerance above the gap.
+        let (cmds, err) = fit_cubics(&poly, &across, 0.2).expect("fits at 0.2 px");
+        assert_eq!(cmds.len(), 1);
+        assert_le(err, 0.2, "stated error");
     }
 
     /// 10 Y² − X³ + 300 X − 5000 = 0, i.e. y² = x³ − 3x + 5 at scale 10, around (50, 60).

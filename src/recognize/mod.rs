@@ -771,7 +771,8 @@ fn lift_points<P: AsRef<[i64]>>(
 }
 
 /// The float GJK run to convergence in coordinates scaled by `scale`: the direction of
-/// largest margin, unscaled. `None` if the sets are not (numerically) separated.
+/// largest margin, unscaled (or, when the run stalls, its last separating direction). `None`
+/// if the sets are not (numerically) separated.
 fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
     let map = LinearMap::diagonal(scale);
     let mut support = FloatSupport {
@@ -788,8 +789,11 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
         GjkOutcome::Separated { direction, .. } => direction,
         // A run can stall short of the 1e-12 relative gap (near-degenerate sets, such as a
         // conic piece turning a right-angled corner: the comb's teeth stalled at 1e-9)
-        // while its closest point already separates the sets with nearly the largest
-        // margin: keep it when its support point lies strictly beyond the origin.
+        // while its closest point already separates the sets: keep it when its support
+        // point lies strictly beyond the origin. Its margin is then below the largest (on
+        // the samples and a comb, within a relative gap of 1e-3 for 927 of 951 stalled
+        // runs, up to 0.1 for the rest), but far from the certificate's, and the exporter checks the
+        // clearance it leaves anyway.
         GjkOutcome::Stalled => {
             let x = simplex.point(scale.len())?;
             let s = support.support_point(&x)?;
