@@ -2182,13 +2182,15 @@ mod tests {
         (cmds, measured)
     }
 
-    #[test]
-    fn hyperbola_fit() {
-        // (x' /3)² − (y'/2)² = 1 in pixels×4, rotated by 0.6, centred at (80, 50).
-        let th: f64 = 0.6;
+    /// The hyperbola `(x′/a)² − (y′/b)² = 1` in the frame rotated by `th` about `centre`,
+    /// and its parametrisation: branch `sign` (±1), parameter `t`.
+    fn rotated_hyperbola(
+        a: f64,
+        b: f64,
+        th: f64,
+        centre: Point,
+    ) -> (Polynomial, impl Fn(f64, f64) -> Point) {
         let (s, c) = th.sin_cos();
-        let centre = Point::new(80.0, 50.0);
-        let (a, b) = (12.0, 8.0);
         let poly = Polynomial::from_local(
             &[(2, 0), (1, 1), (0, 2)],
             &[
@@ -2201,10 +2203,17 @@ mod tests {
         )
         .unwrap();
         assert_eq!(poly.as_conic().unwrap().classify(), ConicKind::Hyperbola);
-        let at = |sign: f64, t: f64| {
+        let at = move |sign: f64, t: f64| {
             let (x, y) = (sign * a * t.cosh(), b * t.sinh());
             centre + Vec2::new(c * x - s * y, s * x + c * y)
         };
+        (poly, at)
+    }
+
+    #[test]
+    fn hyperbola_fit() {
+        // (x' /3)² − (y'/2)² = 1 in pixels×4, rotated by 0.6, centred at (80, 50).
+        let (poly, at) = rotated_hyperbola(12.0, 8.0, 0.6, Point::new(80.0, 50.0));
         let mut worst: f64 = 0.0;
         for sign in [1.0, -1.0] {
             let (t0, t1) = (-1.5, 2.0);
@@ -2232,24 +2241,10 @@ mod tests {
             (12.0, 8.0, 0.6, -1.5, 2.0),
             (20.9, 5.1, 0.09, 0.3, -0.8),
         ] {
-            let (sn, cs) = f64::sin_cos(th);
             let centre = Point::new(40.0, 30.0);
-            let poly = Polynomial::from_local(
-                &[(2, 0), (1, 1), (0, 2)],
-                &[
-                    cs * cs / (a * a) - sn * sn / (b * b),
-                    2.0 * cs * sn * (1.0 / (a * a) + 1.0 / (b * b)),
-                    sn * sn / (a * a) - cs * cs / (b * b),
-                ],
-                centre,
-                1.0,
-            )
-            .unwrap();
+            let (poly, at2) = rotated_hyperbola(a, b, th, centre);
             let conic = poly.as_conic().unwrap();
-            let at = |t: f64| {
-                let (x, y) = (a * t.cosh(), b * t.sinh());
-                centre + Vec2::new(cs * x - sn * y, sn * x + cs * y)
-            };
+            let at = |t: f64| at2(1.0, t);
             let guide: Vec<Point> = (1..40)
                 .map(|j| at(t0 + (t1 - t0) * j as f64 / 40.0))
                 .collect();
