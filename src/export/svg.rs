@@ -25,9 +25,12 @@
 //!
 //! # Fallback: pixel cracks
 //! Pieces without equation (the zero certificate of 1–2-pixel pieces), pieces whose
-//! polynomial cannot be built, whose curve does not come within [`JUNCTION_MAX_DISTANCE`] of
-//! a junction, or whose curve [`level_curve_path`] cannot draw or that strays farther than
-//! [`STRAY_MARGIN`] from the piece's pixels, are drawn along the *cracks* of their pixels: for each pixel, the sides it shares with the 4-neighbours on the RIGHT of
+//! polynomial cannot be built, whose curve passes closer than the minimum clearance
+//! ([`SvgOptions::min_clearance`]) to a pixel centre, whose curve does not come within
+//! [`JUNCTION_MAX_DISTANCE`] of a junction, or whose curve [`level_curve_path`] cannot draw
+//! or that strays farther than [`STRAY_MARGIN`] from the piece's pixels, are drawn along the
+//! *cracks* of their pixels (a straight run of cracks as one line): for each pixel, the
+//! sides it shares with the 4-neighbours on the RIGHT of
 //! the walk (between the directions to the next and to the previous point, turning
 //! clockwise), which border tracing guarantees to be background. Those sides are exactly the
 //! pixel border, so these pixels are inside and their background neighbours outside. The
