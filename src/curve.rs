@@ -921,12 +921,13 @@ pub fn level_curve_path(
             }
             ConicKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
             ConicKind::Hyperbola => {
-                let (centre, _, angle) = conic.hyperbola_params()?;
+                let params = conic.hyperbola_params()?;
+                let (centre, _, angle) = params;
                 let axis = Vec2::from_angle(angle);
                 if (from - centre).dot(axis) * (to - centre).dot(axis) < 0.0 {
                     return None; // different branches
                 }
-                let trace = hyperbola_trace(poly, &conic, from, to, guide)
+                let trace = hyperbola_trace(poly, params, from, to, guide)
                     .or_else(|| trace_curve(poly, from, to, guide))?;
                 return fit_cubics(poly, &trace, tolerance);
             }
@@ -1109,7 +1110,7 @@ struct Trace {
 }
 
 /// The trace of a hyperbola arc from its parametrisation `centre + R(θ)(σ a cosh s, b sinh s)`
-/// ([`Conic::hyperbola_params`]), with points at most [`HYPERBOLA_STEP`] apart in arc length
+/// (`(centre, (a, b), θ)` as [`Conic::hyperbola_params`] gives them), with points at most [`HYPERBOLA_STEP`] apart in arc length
 /// and [`HYPERBOLA_TURN`] in direction, and exact tangents, instead of marching along the
 /// curve: between two points of one branch the arc
 /// is unique. The parameter of a point of the curve is `asinh(v / b)`, `v` its coordinate
@@ -1126,12 +1127,11 @@ struct Trace {
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x <= y)` also rejects NaN.
 fn hyperbola_trace(
     poly: &Polynomial,
-    conic: &Conic,
+    (centre, semi, angle): (Point, Vec2, f64),
     from: Point,
     to: Point,
     guide: &[Point],
 ) -> Option<Trace> {
-    let (centre, semi, angle) = conic.hyperbola_params()?;
     if from == to {
         return None;
     }
@@ -2243,12 +2243,12 @@ mod tests {
         ] {
             let centre = Point::new(40.0, 30.0);
             let (poly, at2) = rotated_hyperbola(a, b, th, centre);
-            let conic = poly.as_conic().unwrap();
+            let params = poly.as_conic().unwrap().hyperbola_params().unwrap();
             let at = |t: f64| at2(1.0, t);
             let guide: Vec<Point> = (1..40)
                 .map(|j| at(t0 + (t1 - t0) * j as f64 / 40.0))
                 .collect();
-            let tr = hyperbola_trace(&poly, &conic, at(t0), at(t1), &guide).expect("trace");
+            let tr = hyperbola_trace(&poly, params, at(t0), at(t1), &guide).expect("trace");
             assert_point_close(tr.pts[0], at(t0), 0.0, "starts at from");
             assert_point_close(*tr.pts.last().unwrap(), at(t1), 0.0, "ends at to");
             for (k, w) in tr.pts.windows(2).enumerate() {
@@ -2269,9 +2269,9 @@ mod tests {
             }
             // A guide on the other branch, or beyond the arc, is refused.
             let mirrored: Vec<Point> = guide.iter().map(|&g| centre - (g - centre)).collect();
-            assert!(hyperbola_trace(&poly, &conic, at(t0), at(t1), &mirrored).is_none());
+            assert!(hyperbola_trace(&poly, params, at(t0), at(t1), &mirrored).is_none());
             let beyond = [at(t1 + (t1 - t0))];
-            assert!(hyperbola_trace(&poly, &conic, at(t0), at(t1), &beyond).is_none());
+            assert!(hyperbola_trace(&poly, params, at(t0), at(t1), &beyond).is_none());
             check_fit(&poly, at(t0), at(t1), &guide, 0.05);
         }
     }
