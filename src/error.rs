@@ -24,6 +24,21 @@ pub enum Error {
         /// The operating system's reason.
         source: std::io::Error,
     },
+    /// An output path resolves to the input file (directly, through `./`, a link or a hard
+    /// link): writing it would destroy the input.
+    #[error("{path}: is the input file; refusing to overwrite it (choose another output name)")]
+    OutputIsInput {
+        /// The output path as given.
+        path: PathBuf,
+    },
+    /// Two outputs of one run go to the same place (the same file, or both to standard output).
+    #[error("{second}: names the same destination as {first}; each output needs its own")]
+    SameOutput {
+        /// The output named first.
+        first: PathBuf,
+        /// The output named second.
+        second: PathBuf,
+    },
     /// The input could not be decoded as an image (unknown format, corrupt or truncated data).
     #[error("cannot decode {path}: {source}")]
     Decode {

@@ -76,7 +76,7 @@ pub use level::{
     CurveKind,
 };
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
-pub use output::{png_bytes, write_atomic};
+pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
 pub use pixel::Pixel;
 pub use recognize::{
     max_margin_direction, recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness,

@@ -1,73 +1,430 @@
-//! Writing output files whole or not at all.
+//! Writing a run's output files whole or not at all, all of them or none.
+//!
+//! An [`OutputSet`] is checked before any work is done (every destination writable, none the
+//! input, no two the same), holds each output in a temporary file beside its destination
+//! while the run goes on, and puts them all in place only at [`OutputSet::commit`]. A run that
+//! fails, or is dropped, leaves every destination as it was and no temporary behind;
+//! [`exit_removing_temporaries`] does the same from a signal handler.
+//!
+//! # Destinations
+//! * `-` is standard output.
+//! * Symbolic links are followed, dangling ones too: the file a link names is written and the
+//!   link stays a link.
+//! * An existing regular file is replaced atomically (a new file renamed over it) and keeps
+//!   its permissions (hard links to it keep the old content).
+//! * Paths into `/dev` and `/proc` (also as a link's target) and any existing destination that
+//!   is not a regular file — `/dev/null`, `/dev/stdout`, a FIFO — are written in place,
+//!   appending: renaming over them would replace the device (as root, `-o /dev/null` once
+//!   turned `/dev/null` into a regular file), or the file a shell redirected standard output
+//!   to. A FIFO that nobody reads is an error, not a wait.
+//!
+//! Temporary files are created with `O_EXCL` under a random name (`tempfile`), so a link
+//! planted at a predictable name cannot redirect the write; their names are short whatever
+//! the destination's name. They are not `fsync`ed before the rename (as potrace, vtracer and
+//! most converters do not; it cost 0.65 ms of wall time per run, a sixth of a glyph's): after
+//! a system crash that ext4 survives with the old or the new file, some filesystems (XFS) may
+//! leave an empty one.
 
 use crate::error::Error;
+use std::fs::{File, Metadata, OpenOptions, Permissions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard};
 
-/// Writes `bytes` to `path` through a temporary file in the same directory, renamed over the
-/// target once complete: a failure leaves no partial file. The path `-` means standard output.
-///
-/// Only regular files are replaced, and they keep their permissions (hard links to them do
-/// not follow). Symbolic links are followed, dangling ones too, so the file they point to is
-/// written and the link stays a link. Paths into `/dev` and `/proc` (also as a link's target)
-/// and any existing target that is not a regular file — `/dev/null`, `/dev/stdout`, a FIFO —
-/// are written in place, appending: renaming over them would replace the device (as root,
-/// `-o /dev/null` once turned `/dev/null` into a regular file), or the file a shell
-/// redirected standard output to, losing what was written there before.
-///
-/// The file is not `fsync`ed before the rename (as potrace, vtracer and most converters do
-/// not; it cost 0.65 ms of wall time per run, a sixth of a glyph's): after a system crash
-/// that ext4 survives with the old or the new file, some filesystems (XFS) may leave an
-/// empty one.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let err = |source| Error::Write {
-        path: path.to_path_buf(),
-        source,
-    };
-    if path == Path::new("-") {
-        let mut out = std::io::stdout().lock();
-        return out.write_all(bytes).and_then(|()| out.flush()).map_err(err);
+/// Temporary files not yet put in place or removed, for [`exit_removing_temporaries`].
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
+    PENDING.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Removes every temporary file of every [`OutputSet`] of the process and exits with `code`,
+/// without returning: for signal handlers (SIGINT, SIGTERM). No output set can create or
+/// rename a temporary file once this has started.
+pub fn exit_removing_temporaries(code: i32) -> ! {
+    let list = pending();
+    for path in list.iter() {
+        let _ = std::fs::remove_file(path);
     }
-    let (target, special) = resolve(path).map_err(err)?;
-    let meta = match std::fs::metadata(&target) {
-        Ok(meta) => Some(meta),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
-        Err(e) => return Err(err(e)),
-    };
-    if meta.as_ref().is_some_and(|m| m.is_dir()) {
-        return Err(err(std::io::Error::new(
-            std::io::ErrorKind::IsADirectory,
-            "is a directory",
-        )));
-    }
-    if special || meta.as_ref().is_some_and(|m| !m.is_file()) {
-        let mut f = std::fs::OpenOptions::new()
-            .append(true)
-            .open(&target)
-            .map_err(err)?;
-        return f.write_all(bytes).and_then(|()| f.flush()).map_err(err);
-    }
-    let dir = match target.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = target
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "output".into());
-    let tmp = dir.join(format!(".{name}.{}.layertrace-tmp", std::process::id()));
-    let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(bytes))
-        .and_then(|()| match &meta {
-            Some(m) => std::fs::set_permissions(&tmp, m.permissions()),
-            None => Ok(()),
+    // The lock stays held: `exit` does not unwind, so no other thread can add a file.
+    std::process::exit(code)
+}
+
+/// A temporary file beside a destination, registered for removal on signals.
+struct Temp {
+    file: Option<tempfile::NamedTempFile>,
+    path: PathBuf,
+}
+
+impl Temp {
+    fn create(dir: &Path, mode: Option<Permissions>) -> std::io::Result<Temp> {
+        let mut list = pending();
+        let mut b = tempfile::Builder::new();
+        b.prefix(".layertrace-").suffix(".tmp").rand_bytes(10);
+        if let Some(mode) = mode {
+            b.permissions(mode);
+        } else {
+            #[cfg(unix)]
+            {
+                // What `File::create` would give: 0666 less the umask.
+                use std::os::unix::fs::PermissionsExt;
+                b.permissions(Permissions::from_mode(0o666));
+            }
+        }
+        let file = b.tempfile_in(dir)?;
+        let path = file.path().to_path_buf();
+        list.push(path.clone());
+        Ok(Temp {
+            file: Some(file),
+            path,
         })
-        .and_then(|()| std::fs::rename(&tmp, &target));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(err(e));
+    }
+
+    fn persist(mut self, target: &Path) -> std::io::Result<()> {
+        let mut list = pending();
+        let file = self.file.take().expect("a temporary is persisted once");
+        let result = file.persist(target).map(drop).map_err(|e| e.error);
+        // On failure the file is removed by the dropped `PersistError`.
+        list.retain(|p| p != &self.path);
+        result
+    }
+}
+
+impl Drop for Temp {
+    fn drop(&mut self) {
+        if let Some(file) = self.file.take() {
+            let mut list = pending();
+            drop(file); // removes it, while the list still names it
+            list.retain(|p| p != &self.path);
+        }
+    }
+}
+
+/// Identity of an existing file (device and inode on Unix).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct FileId(u64, u64);
+
+impl FileId {
+    #[cfg(unix)]
+    fn of(m: &Metadata) -> Option<FileId> {
+        use std::os::unix::fs::MetadataExt;
+        Some(FileId(m.dev(), m.ino()))
+    }
+
+    #[cfg(not(unix))]
+    fn of(_: &Metadata) -> Option<FileId> {
+        None
+    }
+}
+
+/// Where an output goes.
+enum Sink {
+    /// Standard output, written at commit.
+    Stdout { bytes: Option<Vec<u8>> },
+    /// A device, FIFO or stream, opened at check time, written at commit, appending.
+    InPlace { file: File, bytes: Option<Vec<u8>> },
+    /// A regular file (new or replaced): the temporary beside it, filled by `write`.
+    Replace {
+        target: PathBuf,
+        temp: Temp,
+        written: bool,
+    },
+}
+
+struct Entry {
+    /// The path as the user gave it (for messages).
+    path: PathBuf,
+    /// What makes two destinations the same.
+    key: Key,
+    sink: Sink,
+}
+
+#[derive(PartialEq, Eq)]
+enum Key {
+    Stdout,
+    File {
+        canonical: PathBuf,
+        id: Option<FileId>,
+    },
+}
+
+impl Key {
+    fn same(&self, other: &Key) -> bool {
+        match (self, other) {
+            (Key::Stdout, Key::Stdout) => true,
+            (
+                Key::File { canonical, id },
+                Key::File {
+                    canonical: c2,
+                    id: id2,
+                },
+            ) => canonical == c2 || (id.is_some() && id == id2),
+            _ => false,
+        }
+    }
+}
+
+/// Names one output of an [`OutputSet`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OutputId(usize);
+
+/// The outputs of one run, written all together or not at all (see the module docs).
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let mut outs = layertrace::OutputSet::new(None);
+/// let svg = outs.add(&dir.path().join("a.svg")).unwrap();
+/// let json = outs.add(&dir.path().join("a.json")).unwrap();
+/// outs.write(svg, b"<svg/>".to_vec()).unwrap();
+/// outs.write(json, b"{}".to_vec()).unwrap();
+/// // Nothing is in place before the commit.
+/// assert!(!dir.path().join("a.svg").exists());
+/// outs.commit().unwrap();
+/// assert_eq!(std::fs::read(dir.path().join("a.json")).unwrap(), b"{}");
+/// ```
+pub struct OutputSet {
+    input: Option<FileId>,
+    entries: Vec<Entry>,
+}
+
+impl OutputSet {
+    /// An empty set for a run reading `input` (a file path, or `None` for standard input or
+    /// in-memory data), which no output may name.
+    pub fn new(input: Option<&Path>) -> OutputSet {
+        let input = input
+            .filter(|p| *p != Path::new("-"))
+            .and_then(|p| std::fs::metadata(p).ok())
+            .and_then(|m| FileId::of(&m));
+        OutputSet {
+            input,
+            entries: Vec::new(),
+        }
+    }
+
+    /// Checks the destination `path` and prepares it: a temporary file beside it (so its
+    /// directory is known to be writable), or the device opened. Nothing visible changes yet.
+    ///
+    /// Errors: [`Error::OutputIsInput`] if it resolves to the input file,
+    /// [`Error::SameOutput`] if another output of the set goes to the same place,
+    /// [`Error::Write`] if it cannot be written (missing or read-only directory, a directory,
+    /// a FIFO without a reader, closed standard output).
+    pub fn add(&mut self, path: &Path) -> Result<OutputId, Error> {
+        let err = |source| Error::Write {
+            path: path.to_path_buf(),
+            source,
+        };
+        let (key, sink) = if path == Path::new("-") || is_stdout_alias(path) {
+            check_stdout().map_err(err)?;
+            (Key::Stdout, Sink::Stdout { bytes: None })
+        } else {
+            let (target, special) = resolve(path).map_err(err)?;
+            let meta = match std::fs::metadata(&target) {
+                Ok(meta) => Some(meta),
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+                Err(e) => return Err(err(e)),
+            };
+            let id = meta.as_ref().and_then(FileId::of);
+            if id.is_some() && id == self.input {
+                return Err(Error::OutputIsInput {
+                    path: path.to_path_buf(),
+                });
+            }
+            if meta.as_ref().is_some_and(Metadata::is_dir) {
+                return Err(err(std::io::Error::new(
+                    std::io::ErrorKind::IsADirectory,
+                    "is a directory",
+                )));
+            }
+            // A path that cannot be resolved (a stream under /proc) is compared as written.
+            let canonical = canonical(&target).unwrap_or_else(|_| target.clone());
+            let key = Key::File { canonical, id };
+            if special || meta.as_ref().is_some_and(|m| !m.is_file()) {
+                let file = open_in_place(&target).map_err(err)?;
+                (key, Sink::InPlace { file, bytes: None })
+            } else {
+                let dir = match target.parent() {
+                    Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+                    _ => PathBuf::from("."),
+                };
+                let temp = Temp::create(&dir, meta.map(|m| m.permissions())).map_err(err)?;
+                let sink = Sink::Replace {
+                    target,
+                    temp,
+                    written: false,
+                };
+                (key, sink)
+            }
+        };
+        if let Some(other) = self.entries.iter().find(|e| e.key.same(&key)) {
+            return Err(Error::SameOutput {
+                first: other.path.clone(),
+                second: path.to_path_buf(),
+            });
+        }
+        self.entries.push(Entry {
+            path: path.to_path_buf(),
+            key,
+            sink,
+        });
+        Ok(OutputId(self.entries.len() - 1))
+    }
+
+    /// Gives output `id` its content: written to its temporary file now, or kept for the
+    /// commit (standard output, devices). Writing an output twice replaces nothing: the
+    /// second call is an error.
+    pub fn write(&mut self, id: OutputId, bytes: Vec<u8>) -> Result<(), Error> {
+        let entry = &mut self.entries[id.0];
+        let err = |source| Error::Write {
+            path: entry.path.clone(),
+            source,
+        };
+        let twice = || std::io::Error::other("written twice");
+        match &mut entry.sink {
+            Sink::Stdout { bytes: slot } | Sink::InPlace { bytes: slot, .. } => {
+                if slot.is_some() {
+                    return Err(err(twice()));
+                }
+                *slot = Some(bytes);
+                Ok(())
+            }
+            Sink::Replace { temp, written, .. } => {
+                if *written {
+                    return Err(err(twice()));
+                }
+                *written = true;
+                let file = temp.file.as_mut().expect("not yet persisted");
+                file.write_all(&bytes)
+                    .and_then(|()| file.flush())
+                    .map_err(err)
+            }
+        }
+    }
+
+    /// Puts every written output in place: regular files first (renames), then standard
+    /// output and devices. An output that was added but never written is left untouched.
+    /// Once a rename has succeeded it is not undone if a later one fails.
+    pub fn commit(self) -> Result<(), Error> {
+        let mut streams = Vec::new();
+        for entry in self.entries {
+            let err = |source| Error::Write {
+                path: entry.path.clone(),
+                source,
+            };
+            match entry.sink {
+                Sink::Replace {
+                    target,
+                    temp,
+                    written,
+                } => {
+                    if written {
+                        temp.persist(&target).map_err(err)?;
+                    }
+                }
+                Sink::Stdout { bytes: Some(b) } => streams.push((entry.path, None, b)),
+                Sink::InPlace {
+                    file,
+                    bytes: Some(b),
+                } => streams.push((entry.path, Some(file), b)),
+                Sink::Stdout { bytes: None } | Sink::InPlace { bytes: None, .. } => {}
+            }
+        }
+        for (path, file, bytes) in streams {
+            let result = match file {
+                Some(mut f) => f.write_all(&bytes).and_then(|()| f.flush()),
+                None => {
+                    let mut out = std::io::stdout().lock();
+                    out.write_all(&bytes).and_then(|()| out.flush())
+                }
+            };
+            result.map_err(|source| Error::Write { path, source })?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes `bytes` to `path` whole or not at all: an [`OutputSet`] of one output (see the
+/// module docs for what happens with links, devices and existing files).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let mut set = OutputSet::new(None);
+    let id = set.add(path)?;
+    set.write(id, bytes.to_vec())?;
+    set.commit()
+}
+
+/// `/dev/stdout` and its aliases name standard output: two of them in one run are one place.
+fn is_stdout_alias(path: &Path) -> bool {
+    ["/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"]
+        .iter()
+        .any(|a| path == Path::new(a))
+}
+
+/// Standard output is usable: on Linux, not the `/dev/null` that Rust's runtime opens
+/// (read-write) in place of a closed descriptor 1 (`>&-`), where the output would be lost.
+fn check_stdout() -> std::io::Result<()> {
+    #[cfg(target_os = "linux")]
+    {
+        let target = std::fs::read_link("/proc/self/fd/1");
+        let info = std::fs::read_to_string("/proc/self/fdinfo/1");
+        if let (Ok(target), Ok(info)) = (target, info) {
+            let flags = info
+                .lines()
+                .find_map(|l| l.strip_prefix("flags:"))
+                .and_then(|f| u32::from_str_radix(f.trim(), 8).ok());
+            // O_ACCMODE == 3, O_RDWR == 2: a shell's `> /dev/null` opens write-only.
+            if target == Path::new("/dev/null") && flags.is_some_and(|f| f & 3 == 2) {
+                return Err(std::io::Error::other("standard output is closed"));
+            }
+        }
     }
     Ok(())
+}
+
+/// Opens a device, FIFO or stream for appending. A FIFO nobody reads fails at once (ENXIO)
+/// instead of blocking; the descriptor is made blocking again for the write.
+fn open_in_place(target: &Path) -> std::io::Result<File> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        let file = OpenOptions::new()
+            .append(true)
+            .custom_flags(nix::fcntl::OFlag::O_NONBLOCK.bits())
+            .open(target)
+            .map_err(|e| {
+                if e.raw_os_error() == Some(nix::errno::Errno::ENXIO as i32) {
+                    std::io::Error::other("no process is reading this FIFO")
+                } else {
+                    e
+                }
+            })?;
+        use nix::fcntl::{fcntl, FcntlArg, OFlag};
+        let flags = fcntl(&file, FcntlArg::F_GETFL).map_err(std::io::Error::from)?;
+        let flags = OFlag::from_bits_truncate(flags) - OFlag::O_NONBLOCK;
+        fcntl(&file, FcntlArg::F_SETFL(flags)).map_err(std::io::Error::from)?;
+        Ok(file)
+    }
+    #[cfg(not(unix))]
+    {
+        OpenOptions::new().append(true).open(target)
+    }
+}
+
+/// The absolute path of `target` with every link resolved; for a file that does not exist
+/// yet, its directory's canonical path joined with its name.
+fn canonical(target: &Path) -> std::io::Result<PathBuf> {
+    match std::fs::canonicalize(target) {
+        Ok(p) => Ok(p),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            let dir = match target.parent() {
+                Some(d) if !d.as_os_str().is_empty() => d,
+                _ => Path::new("."),
+            };
+            let name = target.file_name().ok_or_else(|| {
+                std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name")
+            })?;
+            Ok(std::fs::canonicalize(dir)?.join(name))
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// `path` with its symbolic links followed (a dangling link gives the path it names), and
@@ -104,112 +461,4 @@ pub fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>, image::ImageError> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn atomic_write_and_failure() {
-        let dir = std::env::temp_dir().join(format!("layertrace-out-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let target = dir.join("a.txt");
-        write_atomic(&target, b"hello").unwrap();
-        assert_eq!(std::fs::read(&target).unwrap(), b"hello");
-        // A directory that does not exist: error, nothing written.
-        let bad = dir.join("missing/b.txt");
-        let e = write_atomic(&bad, b"x").unwrap_err();
-        assert!(e.to_string().contains("missing/b.txt"), "{e}");
-        assert!(!bad.exists());
-        // No temporary file left behind.
-        let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
-        assert_eq!(left.len(), 1);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn a_directory_target_is_an_error() {
-        let dir = std::env::temp_dir().join(format!("layertrace-dir-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let e = write_atomic(&dir, b"x").unwrap_err();
-        assert!(e.to_string().contains("directory"), "{e}");
-        assert!(dir.is_dir());
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    /// Through a link in a temporary directory, so that a regression replaces the link,
-    /// never the machine's `/dev/null`.
-    #[cfg(unix)]
-    #[test]
-    fn devices_are_written_in_place_not_replaced() {
-        use std::os::unix::fs::FileTypeExt;
-        let null = Path::new("/dev/null");
-        match std::fs::metadata(null) {
-            Ok(m) if m.file_type().is_char_device() => {}
-            _ => return, // no usable /dev/null here
-        }
-        let dir = std::env::temp_dir().join(format!("layertrace-dev-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let link = dir.join("null");
-        std::os::unix::fs::symlink(null, &link).unwrap();
-        write_atomic(&link, b"into the void").unwrap();
-        assert!(std::fs::symlink_metadata(&link)
-            .unwrap()
-            .file_type()
-            .is_symlink());
-        assert!(std::fs::metadata(null)
-            .unwrap()
-            .file_type()
-            .is_char_device());
-        assert_eq!(
-            std::fs::read_dir(&dir).unwrap().count(),
-            1,
-            "no temporary file left"
-        );
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[cfg(unix)]
-    #[test]
-    fn symlinks_are_followed_and_kept() {
-        let dir = std::env::temp_dir().join(format!("layertrace-link-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let real = dir.join("real.svg");
-        let link = dir.join("link.svg");
-        std::fs::write(&real, b"old").unwrap();
-        std::os::unix::fs::symlink(&real, &link).unwrap();
-        write_atomic(&link, b"new").unwrap();
-        assert!(std::fs::symlink_metadata(&link)
-            .unwrap()
-            .file_type()
-            .is_symlink());
-        assert_eq!(std::fs::read(&real).unwrap(), b"new");
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[cfg(unix)]
-    #[test]
-    fn dangling_links_and_permissions() {
-        use std::os::unix::fs::PermissionsExt;
-        let dir = std::env::temp_dir().join(format!("layertrace-perm-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        // A dangling link: the file it names is created, the link stays.
-        let link = dir.join("link.svg");
-        std::os::unix::fs::symlink("missing.svg", &link).unwrap();
-        write_atomic(&link, b"new").unwrap();
-        assert!(std::fs::symlink_metadata(&link)
-            .unwrap()
-            .file_type()
-            .is_symlink());
-        assert_eq!(std::fs::read(dir.join("missing.svg")).unwrap(), b"new");
-        // A replaced file keeps its mode.
-        let private = dir.join("private.svg");
-        std::fs::write(&private, b"old").unwrap();
-        std::fs::set_permissions(&private, std::fs::Permissions::from_mode(0o600)).unwrap();
-        write_atomic(&private, b"new").unwrap();
-        let mode = std::fs::metadata(&private).unwrap().permissions().mode() & 0o777;
-        assert_eq!(mode, 0o600);
-        assert_eq!(std::fs::read(&private).unwrap(), b"new");
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-}
+mod tests;
