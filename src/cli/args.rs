@@ -1,0 +1,176 @@
+//! The command line: every option, checked when it is parsed.
+
+use clap::Parser;
+use layertrace::{Model, Threshold};
+use std::path::PathBuf;
+
+const AFTER_HELP: &str = "\
+Examples:
+  layertrace samples/glyph_g_liberationserif_cap120.png -o g.svg --report
+  layertrace logo.png -o logo.svg --model circle --fill '#1a237e' --precision 2
+  layertrace samples/glyph_g_liberationserif_cap120.png --json g.json --decomposition g.png
+  cat scan.png | layertrace - --model circle --threshold otsu --json -
+  layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
+
+Output files:
+  Every output is checked before any work starts (its directory writable, not the input
+  file, no two outputs to the same place) and written whole or not at all: each goes to a
+  temporary file beside it, and all of them are renamed into place only when the whole run
+  has succeeded, so a failure or an interrupt (Ctrl-C, SIGTERM) leaves every destination as
+  it was and no temporary file behind. An existing file is replaced atomically and keeps its
+  permissions; a symbolic link is followed (the file it names is written, the link stays);
+  devices, FIFOs and /dev/stdout are written in place; '-' is standard output.
+
+Exit codes:
+  0  success
+  1  bad input or output (missing, unreadable, not an image, truncated, empty, too large,
+     unwritable output, output naming the input); the message says which, and no output
+     file is changed
+  2  bad command-line arguments (also: two outputs to the same place)
+  128+N  stopped by signal N (130 Ctrl-C, 143 SIGTERM), no output file changed";
+
+/// Vectorize a bitmap by Digital Level Layers: every border of the shapes is cut into
+/// pieces, each described exactly by a digital line, circle, conic or polynomial layer.
+#[derive(Parser, Debug)]
+#[command(name = "layertrace", version, about, after_help = AFTER_HELP)]
+pub struct Args {
+    /// Input image (PNG, BMP, PNM/PBM, TIFF, GIF, JPEG, WebP); '-' reads standard input.
+    pub input: PathBuf,
+
+    /// Write the SVG ('-' for standard output): one path, lines, exact circular and
+    /// elliptic arcs, parabolas as quadratic Béziers, other curves as fitted cubics.
+    #[arg(short, long, value_name = "OUT.svg")]
+    pub output: Option<PathBuf>,
+
+    /// Rasterize the SVG back (usvg + tiny-skia, no anti-aliasing) and report on standard
+    /// error: differing pixels, IoU, path commands by type, SVG size.
+    #[arg(long)]
+    pub report: bool,
+
+    /// Write the round-trip differences as PNG: the input's foreground mask black on white,
+    /// missing pixels red, extra pixels blue.
+    #[arg(long, value_name = "FILE.png")]
+    pub diff: Option<PathBuf>,
+
+    /// Fill colour of the SVG path (a CSS colour: a name, #rgb, #rrggbb, rgb(…), hsl(…)).
+    #[arg(long, value_name = "COLOUR", default_value = "black", value_parser = parse_colour)]
+    pub fill: String,
+
+    /// Decimals of the SVG coordinates (0 to 12).
+    #[arg(long, value_name = "N", default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=12))]
+    pub precision: u8,
+
+    /// Largest distance (pixels, 0.001 to 10) of fitted cubic Béziers to the true curve
+    /// (hyperbolas, degenerate conics, poly:D).
+    #[arg(long, value_name = "PX", default_value_t = 0.05, value_parser = parse_tolerance)]
+    pub tolerance: f64,
+
+    /// Draw a piece along its pixel edges when its curve passes closer than this (pixels,
+    /// 0 to 10, plus the coordinate rounding) to a pixel centre, which renderers working on
+    /// a 1/64 px grid could paint on either side; 0 keeps every curve (smaller SVG).
+    #[arg(long, value_name = "PX", default_value_t = 1.0 / 64.0, value_parser = parse_clearance)]
+    pub min_clearance: f64,
+
+    /// Write the pieces and their exact equations as JSON ('-' for standard output).
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+
+    /// Write a picture of the decomposition (PNG), in the style of the paper's figures.
+    #[arg(long, value_name = "FILE.png")]
+    pub decomposition: Option<PathBuf>,
+
+    /// Family of curves: line, circle, conic, or poly:D (polynomials of degree D = 1..6).
+    #[arg(long, short, default_value = "conic", value_parser = parse_model)]
+    pub model: Model,
+
+    /// Foreground is luma < N (0..=255), or 'otsu' for Otsu's threshold
+    /// [default: 128, or otsu with --compat ipol].
+    #[arg(long, value_name = "N|otsu", value_parser = parse_threshold)]
+    pub threshold: Option<Threshold>,
+
+    /// Light foreground on a dark background.
+    #[arg(long)]
+    pub invert: bool,
+
+    /// Follow the conventions of the paper authors' program instead of layertrace's:
+    /// alpha-stripped grey, 4-connected objects, crack-following borders, outliers
+    /// whatever their colour. Reproduces the article's segment counts.
+    #[arg(long, value_name = "ipol", value_parser = ["ipol"],
+          conflicts_with_all = ["output", "report", "diff"])]
+    pub compat: Option<String>,
+
+    /// Enlargement of the decomposition picture, 1 to 64 [default: about 800 pixels wide].
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub scale: Option<u32>,
+
+    /// Refuse images with more pixels than this (checked before decoding).
+    #[arg(long, value_name = "N", default_value_t = 400_000_000,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_pixels: u64,
+
+    /// Worker threads for the decomposition, 1 to 4 × the cores [default: all cores].
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub threads: Option<usize>,
+
+    /// No summary line on standard error.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+fn parse_model(s: &str) -> Result<Model, String> {
+    let m: Model = s.parse().map_err(|e| format!("{e}"))?;
+    if matches!(m, Model::Quadric3 | Model::Poly3(_)) {
+        return Err("3D models apply to point sets, not to images".into());
+    }
+    Ok(m)
+}
+
+/// A finite number in `lo..=hi`.
+fn number_in(s: &str, lo: f64, hi: f64, what: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && (lo..=hi).contains(&v) => Ok(v),
+        _ => Err(format!("'{s}' is not {what} (a number from {lo} to {hi})")),
+    }
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    number_in(s, 0.001, 10.0, "a distance in pixels")
+}
+
+fn parse_clearance(s: &str) -> Result<f64, String> {
+    number_in(s, 0.0, 10.0, "a distance in pixels")
+}
+
+fn parse_threshold(s: &str) -> Result<Threshold, String> {
+    if s.eq_ignore_ascii_case("otsu") {
+        return Ok(Threshold::Otsu);
+    }
+    s.parse::<u8>()
+        .map(Threshold::Fixed)
+        .map_err(|_| format!("'{s}' is neither a number 0..=255 nor 'otsu'"))
+}
+
+/// The most worker threads accepted: four per core (more only costs memory and start-up).
+pub fn max_threads() -> usize {
+    4 * std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let max = max_threads();
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "'{s}' is not a thread count from 1 to {max} (4 × this machine's cores)"
+        )),
+    }
+}
+
+/// A CSS colour as SVG accepts it; refused otherwise (it is written into an attribute).
+fn parse_colour(s: &str) -> Result<String, String> {
+    match s.parse::<svgtypes::Color>() {
+        Ok(_) if !s.contains(['"', '<', '>', '&', '\'']) => Ok(s.trim().to_string()),
+        _ => Err(format!(
+            "'{s}' is not a colour (a name such as black, #rgb, #rrggbb, rgb(…) or hsl(…))"
+        )),
+    }
+}

@@ -1,0 +1,62 @@
+//! The command-line tool: arguments, signals and exit codes around one [`run::run`].
+//!
+//! Kept apart from `main.rs` so that the fuzz target `cli` runs exactly this code on
+//! arguments made from fuzz bytes.
+
+mod args;
+mod run;
+
+use clap::Parser;
+use layertrace::Error;
+use std::ffi::OsString;
+use std::process::ExitCode;
+
+pub use args::Args;
+
+/// Parses `argv` (program name first) and runs the tool; the exit code is 0 on success, 1
+/// for bad input or output, 2 for bad arguments (see `--help`).
+pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
+    let args = match Args::try_parse_from(argv) {
+        Ok(args) => args,
+        Err(e) => {
+            // Help and version go to standard output with exit 0; errors to standard error.
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    install_signal_handlers();
+    match run::run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("layertrace: {e}");
+            ExitCode::from(exit_code(&e))
+        }
+    }
+}
+
+/// 2 for what the command line got wrong, 1 for everything else.
+fn exit_code(e: &Error) -> u8 {
+    match e {
+        Error::SameOutput { .. } => 2,
+        _ => 1,
+    }
+}
+
+/// On SIGINT, SIGTERM or SIGHUP: remove the temporary output files and exit with
+/// 128 + the signal's number, leaving every destination as it was.
+fn install_signal_handlers() {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+            return; // the default dispositions stay: no cleanup, but no other harm
+        };
+        let _ = std::thread::Builder::new()
+            .name("signals".into())
+            .spawn(move || {
+                if let Some(sig) = signals.forever().next() {
+                    layertrace::exit_removing_temporaries(128 + sig);
+                }
+            });
+    });
+}

@@ -1,0 +1,182 @@
+//! One run of the tool: check the outputs, load, decompose, export, commit, report.
+
+use super::args::Args;
+use layertrace::{
+    compare, decompose, decomposition_json, decomposition_picture, default_scale, diff_image,
+    load_path, piece_kind, png_bytes, rasterize_svg, svg_document, trace, Basis, Compat,
+    Convention, CurveKind, Error, JsonHeader, LoadOptions, OutlierRule, OutputSet, SvgOptions,
+    Threshold,
+};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Runs the tool once. Every output is checked before the input is read and put in place
+/// only when everything succeeded.
+pub fn run(args: &Args) -> Result<(), Error> {
+    let start = Instant::now();
+    let stdin = args.input == Path::new("-");
+    let mut outs = OutputSet::new((!stdin).then_some(args.input.as_path()));
+    let mut named: Vec<(&str, PathBuf)> = Vec::new();
+    let mut add = |flag: &'static str, path: Option<&PathBuf>| -> Result<_, Error> {
+        let Some(path) = path else { return Ok(None) };
+        let id = outs.add(path).map_err(|e| match e {
+            // Name the options, not only the paths, in the message.
+            Error::SameOutput { first, second } => {
+                let flag_of = |p: &Path| named.iter().find(|(_, q)| *q == p).map(|(f, _)| *f);
+                Error::SameOutput {
+                    first: format!("{} {}", flag_of(&first).unwrap_or("?"), first.display()).into(),
+                    second: format!("{flag} {}", second.display()).into(),
+                }
+            }
+            e => e,
+        })?;
+        named.push((flag, path.clone()));
+        Ok(Some(id))
+    };
+    let svg_out = add("-o", args.output.as_ref())?;
+    let json_out = add("--json", args.json.as_ref())?;
+    let picture_out = add("--decomposition", args.decomposition.as_ref())?;
+    let diff_out = add("--diff", args.diff.as_ref())?;
+
+    if let Some(n) = args.threads {
+        // The main thread is one of the workers: with one thread, none is spawned and no
+        // work is handed between threads. Fails only if a pool exists already (a second run
+        // in one process keeps the first pool).
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .use_current_thread()
+            .build_global();
+    }
+    let ipol = args.compat.is_some();
+    let opts = LoadOptions {
+        threshold: args.threshold.unwrap_or(if ipol {
+            Threshold::Otsu
+        } else {
+            Threshold::Fixed(128)
+        }),
+        invert: args.invert,
+        compat: if ipol { Compat::Ipol } else { Compat::Default },
+        max_pixels: args.max_pixels,
+    };
+    let loaded = load_path(&args.input, &opts)?;
+    let mask = &loaded.mask;
+    let (convention, rule) = if ipol {
+        (Convention::Ipol, OutlierRule::Any)
+    } else {
+        (Convention::Default, OutlierRule::NotInPiece)
+    };
+    let contours = trace(mask, convention);
+    let d = decompose(contours, args.model, rule);
+
+    if let Some(id) = json_out {
+        let header = JsonHeader {
+            width: mask.width(),
+            height: mask.height(),
+            threshold: loaded.threshold,
+            invert: args.invert,
+        };
+        outs.write(id, decomposition_json(&d, &header).into_bytes())?;
+    }
+    if let (Some(id), Some(path)) = (picture_out, &args.decomposition) {
+        let scale = args
+            .scale
+            .unwrap_or_else(|| default_scale(mask.width(), mask.height()));
+        let img = decomposition_picture(mask, &d, scale, args.max_pixels.max(1 << 24)).ok_or(
+            Error::PictureTooLarge {
+                path: path.clone(),
+                scale,
+            },
+        )?;
+        let bytes = png_bytes(&img).map_err(|source| Error::Encode {
+            path: path.clone(),
+            source,
+        })?;
+        outs.write(id, bytes)?;
+    }
+
+    if svg_out.is_some() || args.report || diff_out.is_some() {
+        let opts = SvgOptions {
+            fill: args.fill.clone(),
+            precision: args.precision,
+            tolerance: args.tolerance,
+            min_clearance: args.min_clearance,
+        };
+        let out = svg_document(&d, mask.width(), mask.height(), &opts);
+        if args.report || diff_out.is_some() {
+            let actual = rasterize_svg(&out.svg, mask.width(), mask.height())?;
+            let r = compare(mask, &actual);
+            if let (Some(id), Some(path)) = (diff_out, &args.diff) {
+                let bytes =
+                    png_bytes(&diff_image(mask, &actual)).map_err(|source| Error::Encode {
+                        path: path.clone(),
+                        source,
+                    })?;
+                outs.write(id, bytes)?;
+            }
+            if args.report {
+                let c = out.commands;
+                let pct = if r.foreground > 0 {
+                    100.0 * r.differing as f64 / r.foreground as f64
+                } else {
+                    0.0
+                };
+                eprintln!(
+                    "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}",
+                    r.differing, r.missing, r.extra, pct, r.foreground, r.iou
+                );
+                eprintln!(
+                    "svg: {} bytes, {} commands (M {}, L {}, A {}, Q {}, C {}, Z {}), {} pieces drawn along pixel edges, max fit error {:.3} px",
+                    out.svg.len(),
+                    c.total(),
+                    c.move_to,
+                    c.line,
+                    c.arc,
+                    c.quad,
+                    c.cubic,
+                    c.close,
+                    out.fallbacks,
+                    out.max_fit_error
+                );
+            }
+        }
+        if let Some(id) = svg_out {
+            outs.write(id, out.svg.into_bytes())?;
+        }
+    }
+    outs.commit()?;
+
+    if !args.quiet {
+        let basis = d.model.basis();
+        let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+        for p in d.pieces.iter().flatten() {
+            let k: CurveKind = piece_kind(&basis as &dyn Basis, &p.certificate);
+            *kinds.entry(k.name()).or_default() += 1;
+        }
+        let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{k} {n}")).collect();
+        let kinds = if kinds.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", kinds.join(", "))
+        };
+        let holes = d.contours.iter().filter(|c| c.hole).count();
+        let name = if stdin {
+            "<stdin>".into()
+        } else {
+            args.input.display().to_string()
+        };
+        eprintln!(
+            "{}: {}x{}, {} contours ({} holes), {} pieces{}, model {}, {:.1} ms",
+            name,
+            mask.width(),
+            mask.height(),
+            d.contours.len(),
+            holes,
+            d.piece_count(),
+            kinds,
+            d.model,
+            start.elapsed().as_secs_f64() * 1e3
+        );
+    }
+    Ok(())
+}
