@@ -83,7 +83,8 @@ pub struct SvgOptions {
     /// Default 3.
     pub precision: u8,
     /// Largest distance (pixels) of fitted cubic Béziers to the true curve (hyperbolas,
-    /// degenerate conics, degree > 2). Default 0.05.
+    /// degenerate conics, degree > 2). Default 0.05; values below 0.001 act as 0.001, and
+    /// non-finite or non-positive ones as the default.
     pub tolerance: f64,
     /// A piece whose border curve passes closer than this (pixels) to a pixel centre, plus
     /// how far rounding to [`precision`](SvgOptions::precision) decimals moves a point
@@ -725,7 +726,7 @@ impl Curves {
                     // beyond the asked tolerance.
                     c.polys.push(Some(poly));
                     let room = (clearance / 2.0).min(clearance - min_clearance);
-                    c.tolerances.push(room.clamp(1e-3, tolerance));
+                    c.tolerances.push(room.clamp(1e-3, tolerance.max(1e-3)));
                 }
                 None => {
                     c.no_polynomial += 1;
@@ -1015,8 +1016,9 @@ fn xml_escape(v: &str) -> String {
 pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOptions) -> SvgOutput {
     let basis = d.model.basis();
     let precision = usize::from(opts.precision.min(12));
+    // Below 1/1000 px a fit is not asked for: that is the floor of the clearance rule.
     let tolerance = if opts.tolerance.is_finite() && opts.tolerance > 0.0 {
-        opts.tolerance
+        opts.tolerance.max(1e-3)
     } else {
         SvgOptions::default().tolerance
     };
