@@ -31,7 +31,7 @@ Exit codes:
 #[derive(Parser, Debug)]
 #[command(name = "layertrace", version, about, after_help = AFTER_HELP)]
 struct Args {
-    /// Input image (PNG, BMP, PNM/PBM, TIFF, GIF, JPEG, WebP).
+    /// Input image (PNG, BMP, PNM/PBM, TIFF, GIF, JPEG, WebP); '-' reads standard input.
     input: PathBuf,
 
     /// Write the SVG ('-' for standard output): one path, lines, exact circular and
@@ -104,6 +104,11 @@ struct Args {
     #[arg(long, value_name = "N", default_value_t = 400_000_000)]
     max_pixels: u64,
 
+    /// Refuse images whose decoding would need more memory than this, e.g. 2G, 512M, 1.5GiB
+    /// (checked before decoding) [default: half the RAM, within the process's ulimit].
+    #[arg(long, value_name = "SIZE", value_parser = layertrace::parse_memory_size)]
+    max_memory: Option<u64>,
+
     /// Worker threads for the decomposition (default: all cores).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -169,6 +174,9 @@ fn run(args: &Args) -> Result<(), Error> {
         invert: args.invert,
         compat: if ipol { Compat::Ipol } else { Compat::Default },
         max_pixels: args.max_pixels,
+        max_memory: args
+            .max_memory
+            .unwrap_or_else(layertrace::default_max_memory),
     };
     let loaded = load_path(&args.input, &opts)?;
     let mask = &loaded.mask;

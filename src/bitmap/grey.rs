@@ -1,6 +1,6 @@
 //! Turning decoded pixels into grey levels, by layertrace's convention or the IPOL reference's.
 
-use image::DynamicImage;
+use image::{ColorType, DynamicImage, ImageBuffer};
 
 /// Which program's reading of the input pixels to reproduce.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -56,6 +56,74 @@ pub(super) fn default_grey(img: &DynamicImage) -> Vec<u8> {
         }
         DynamicImage::ImageRgb16(rgb).to_luma8().into_raw()
     }
+}
+
+/// The grey levels of one row of `width` decoded pixels of type `color`, by the same functions
+/// (so to the same values) as a whole image; `None` for a pixel type `image` has no
+/// [`DynamicImage`] variant for.
+///
+/// 16-bit and float samples are big-endian if `big_endian` (as PNG rows are), else native.
+/// Every conversion is pixel by pixel, so a row gives the row of the whole image's grey.
+pub(super) fn grey_row(
+    color: ColorType,
+    big_endian: bool,
+    width: u32,
+    bytes: &[u8],
+    compat: Compat,
+) -> Option<Vec<u8>> {
+    fn u16s(bytes: &[u8], be: bool) -> Vec<u16> {
+        bytes
+            .chunks_exact(2)
+            .map(|c| {
+                let c = [c[0], c[1]];
+                if be {
+                    u16::from_be_bytes(c)
+                } else {
+                    u16::from_ne_bytes(c)
+                }
+            })
+            .collect()
+    }
+    fn f32s(bytes: &[u8], be: bool) -> Vec<f32> {
+        bytes
+            .chunks_exact(4)
+            .map(|c| {
+                let c = [c[0], c[1], c[2], c[3]];
+                if be {
+                    f32::from_be_bytes(c)
+                } else {
+                    f32::from_ne_bytes(c)
+                }
+            })
+            .collect()
+    }
+    let (w, be) = (width, big_endian);
+    let img = match color {
+        // Grey stays grey whatever the convention: no conversion at all.
+        ColorType::L8 => return Some(bytes.to_vec()),
+        ColorType::La8 => DynamicImage::ImageLumaA8(ImageBuffer::from_raw(w, 1, bytes.to_vec())?),
+        ColorType::Rgb8 => DynamicImage::ImageRgb8(ImageBuffer::from_raw(w, 1, bytes.to_vec())?),
+        ColorType::Rgba8 => DynamicImage::ImageRgba8(ImageBuffer::from_raw(w, 1, bytes.to_vec())?),
+        ColorType::L16 => DynamicImage::ImageLuma16(ImageBuffer::from_raw(w, 1, u16s(bytes, be))?),
+        ColorType::La16 => {
+            DynamicImage::ImageLumaA16(ImageBuffer::from_raw(w, 1, u16s(bytes, be))?)
+        }
+        ColorType::Rgb16 => DynamicImage::ImageRgb16(ImageBuffer::from_raw(w, 1, u16s(bytes, be))?),
+        ColorType::Rgba16 => {
+            DynamicImage::ImageRgba16(ImageBuffer::from_raw(w, 1, u16s(bytes, be))?)
+        }
+        ColorType::Rgb32F => {
+            DynamicImage::ImageRgb32F(ImageBuffer::from_raw(w, 1, f32s(bytes, be))?)
+        }
+        ColorType::Rgba32F => {
+            DynamicImage::ImageRgba32F(ImageBuffer::from_raw(w, 1, f32s(bytes, be))?)
+        }
+        _ => return None,
+    };
+    Some(match compat {
+        Compat::Default => default_grey(&img),
+        Compat::Ipol => ipol_grey(&img),
+    })
 }
 
 /// libpng's default `rgb_to_gray` on 8-bit samples (truncating, as its no-gamma path does).

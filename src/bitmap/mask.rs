@@ -32,6 +32,33 @@ impl Mask {
         }
     }
 
+    /// An all-background mask, or `None` if its bits cannot be allocated (instead of aborting).
+    pub(crate) fn try_new(width: u32, height: u32) -> Option<Mask> {
+        let n = u64::from(width) * u64::from(height);
+        let words = usize::try_from(n.div_ceil(64)).ok()?;
+        let mut bits = Vec::new();
+        bits.try_reserve_exact(words).ok()?;
+        bits.resize(words, 0);
+        Some(Mask {
+            width,
+            height,
+            bits,
+        })
+    }
+
+    /// Bytes taken by the bits of a `width` × `height` mask.
+    pub(crate) fn bytes_for(width: u32, height: u32) -> u64 {
+        (u64::from(width) * u64::from(height)).div_ceil(64) * 8
+    }
+
+    /// Sets the pixel of row-major index `i` to foreground (ignored past the last pixel).
+    #[inline]
+    pub(crate) fn set_index(&mut self, i: usize) {
+        if let Some(w) = self.bits.get_mut(i / 64) {
+            *w |= 1 << (i % 64);
+        }
+    }
+
     /// A mask whose pixel `(x, y)` is foreground iff `f(x, y)`.
     pub fn from_fn(width: u32, height: u32, mut f: impl FnMut(u32, u32) -> bool) -> Mask {
         let mut m = Mask::new(width, height);
