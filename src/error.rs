@@ -59,6 +59,51 @@ pub enum Error {
         /// The limit that was exceeded.
         max_pixels: u64,
     },
+    /// The image data ends early, or is too short for what its header announces.
+    #[error("cannot decode {path}: the data is truncated or corrupt ({detail})")]
+    Truncated {
+        /// The file (`<memory>` for in-memory input, `<stdin>` for standard input).
+        path: PathBuf,
+        /// What showed it.
+        detail: String,
+    },
+    /// Decoding and thresholding the image would need more memory than allowed; checked
+    /// before the large allocations.
+    #[error(
+        "{path}: needs about {} of memory, more than the limit of {} (raise it with --max-memory)",
+        size(*needed),
+        size(*limit)
+    )]
+    NeedsMemory {
+        /// The file.
+        path: PathBuf,
+        /// Estimated bytes needed.
+        needed: u64,
+        /// The limit ([`crate::LoadOptions::max_memory`]).
+        limit: u64,
+    },
+    /// The system refused an allocation that the memory limit allowed.
+    #[error("{path}: out of memory: cannot allocate {} (lower --max-memory to be refused before decoding)", size(*bytes))]
+    OutOfMemory {
+        /// The file.
+        path: PathBuf,
+        /// The size of the refused allocation.
+        bytes: u64,
+    },
+    /// A pipe, FIFO or other input read into memory is longer than allowed.
+    #[error("{path}: input is longer than {}, the bound set by --max-pixels and --max-memory", size(*limit))]
+    InputTooLarge {
+        /// The file (`<stdin>` for standard input).
+        path: PathBuf,
+        /// The bound in bytes.
+        limit: u64,
+    },
+    /// The input holds no data at all.
+    #[error("{path}: no data (empty file, or a pipe or FIFO with no writer)")]
+    NoData {
+        /// The file (`<stdin>` for standard input).
+        path: PathBuf,
+    },
     /// The image has zero width or zero height.
     #[error("{path}: image is empty ({width}x{height} pixels)")]
     Empty {
@@ -101,4 +146,17 @@ pub enum Error {
         /// Height in pixels.
         height: u32,
     },
+}
+
+/// A byte count for messages: GiB with one decimal from 1 GiB on, else MiB, else KiB.
+fn size(bytes: u64) -> String {
+    const KIB: f64 = 1024.0;
+    let b = bytes as f64;
+    if b >= KIB * KIB * KIB {
+        format!("{:.1} GiB", b / (KIB * KIB * KIB))
+    } else if b >= KIB * KIB {
+        format!("{:.0} MiB", b / (KIB * KIB))
+    } else {
+        format!("{:.0} KiB", (b / KIB).ceil())
+    }
 }

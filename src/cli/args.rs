@@ -108,6 +108,11 @@ pub struct Args {
           value_parser = clap::value_parser!(u64).range(1..))]
     pub max_pixels: u64,
 
+    /// Refuse images whose decoding would need more memory than this, e.g. 2G, 512M, 1.5GiB
+    /// (checked before decoding) [default: half the RAM, within the process's ulimit].
+    #[arg(long, value_name = "SIZE", value_parser = layertrace::parse_memory_size)]
+    pub max_memory: Option<u64>,
+
     /// Worker threads for the decomposition, 1 to 4 × the cores [default: all cores].
     #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,

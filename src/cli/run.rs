@@ -58,6 +58,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
         invert: args.invert,
         compat: if ipol { Compat::Ipol } else { Compat::Default },
         max_pixels: args.max_pixels,
+        max_memory: args
+            .max_memory
+            .unwrap_or_else(layertrace::default_max_memory),
     };
     let loaded = load_path(&args.input, &opts)?;
     let mask = &loaded.mask;

@@ -1,0 +1,28 @@
+//! Loading images and thresholding them into a binary foreground mask.
+//!
+//! Two conventions are offered (see [`Compat`]):
+//!
+//! * [`Compat::Default`] composites transparent pixels on white, takes the Rec. 709 luma
+//!   (as `image`'s `to_luma8` does) and thresholds it.
+//! * [`Compat::Ipol`] reproduces how the reference code of the IPOL 2014 article reads its
+//!   input (8-bit grey through libpng: alpha stripped, libpng's default RGB to grey weights).
+//!
+//! Image dimensions are checked against [`LoadOptions::max_pixels`], and the memory that
+//! decoding and thresholding will need against [`LoadOptions::max_memory`], before any pixel
+//! is decoded. PNG is decoded row by row straight into the mask.
+
+mod grey;
+mod input;
+mod jpeg;
+mod load;
+mod mask;
+mod otsu;
+mod png;
+#[cfg(test)]
+mod tests;
+
+pub use grey::Compat;
+pub use input::{default_max_memory, parse_memory_size};
+pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};
+pub use mask::Mask;
+pub use otsu::Threshold;
