@@ -24,10 +24,16 @@
 //! usvg itself turns elliptical arcs into cubics within 0.1 pixel (kurbo's
 //! `Arc::to_cubic_beziers(0.1)` in svgtypes' path simplification); the arcs layertrace
 //! writes are short pieces, for which that conversion is much closer than its bound.
+//!
+//! [`staircases`] counts pixel staircases in the path data (see its module).
 
 use crate::bitmap::Mask;
 use crate::error::Error;
 use kurbo::{BezPath, PathEl, Point};
+
+mod staircase;
+
+pub use staircase::{path_staircases, staircases, StaircaseCount};
 
 /// Tolerance (pixels) of the flattening of curves done by [`rasterize_svg`] before filling
 /// (raised to `1e-8` times the path's extent for paths over 100 000 pixels wide).

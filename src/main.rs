@@ -3,9 +3,9 @@
 use clap::Parser;
 use layertrace::{
     compare, decompose, decomposition_json, decomposition_picture, default_scale, diff_image,
-    load_path, piece_kind, png_bytes, rasterize_svg, svg_document, trace, write_atomic, Basis,
-    Compat, Convention, CurveKind, Error, JsonHeader, LoadOptions, Model, OutlierRule, SvgOptions,
-    Threshold,
+    load_path, piece_kind, png_bytes, rasterize_svg, staircases, svg_document, trace, write_atomic,
+    Basis, Compat, Convention, CurveKind, Error, JsonHeader, LoadOptions, Model, OutlierRule,
+    SvgOptions, Threshold,
 };
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -40,7 +40,8 @@ struct Args {
     output: Option<PathBuf>,
 
     /// Rasterize the SVG back (usvg + tiny-skia, no anti-aliasing) and report on standard
-    /// error: differing pixels, IoU, path commands by type, SVG size.
+    /// error: differing pixels, IoU, path commands by type, SVG size, pixel staircases (runs
+    /// of 4 or more alternating axis-aligned steps of at most 2 px).
     #[arg(long)]
     report: bool,
 
@@ -251,6 +252,11 @@ fn run(args: &Args) -> Result<(), Error> {
                     c.close,
                     out.fallbacks,
                     out.max_fit_error
+                );
+                let s = staircases(&out.svg)?;
+                eprintln!(
+                    "staircases: {} runs, {} segments in runs (of {} straight segments)",
+                    s.runs, s.segments, s.lines
                 );
             }
         }
