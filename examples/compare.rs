@@ -21,8 +21,9 @@
 //! `--runs` (default 5) plain runs give the median wall time of the whole command. Every SVG
 //! gets its root `width`/`height` set to the image size in pixels (potrace writes them in
 //! `pt`, which usvg would scale by 4/3; layertrace's and vtracer's are already the pixel size
-//! and stay unchanged), is rasterized with [`rasterize_svg`] (usvg + tiny-skia, no
-//! anti-aliasing, one pixel per user unit) and compared with the mask. Path commands are
+//! and stay unchanged), is rendered with [`rasterize_svg`] (the resvg crate as
+//! `resvg --shape-rendering crispEdges` draws it, one pixel per user unit) and compared with
+//! the mask. Path commands are
 //! counted with svgtypes' path parser, which expands implicit repeated commands; `M` and `Z`
 //! are not counted. A tool that cannot be run is reported on standard error and its rows
 //! are skipped.

@@ -1,37 +1,43 @@
-//! The fidelity round trip: rasterize an SVG back to pixels and compare with the input mask.
+//! The fidelity round trip: render an SVG back to pixels the way resvg does and compare with
+//! the input mask.
 //!
-//! # How pixels are decided
-//! [`rasterize_svg`] parses the document with usvg (default options; layertrace builds usvg
-//! without text support, so `<text>` is dropped) and fills every filled path with tiny-skia,
-//! anti-aliasing off, at one pixel per user unit after the document's own transforms
-//! (viewBox included), honouring the path's fill rule. A pixel is foreground when painted.
+//! # What is measured
+//! [`rasterize_svg`] renders the document with the resvg crate exactly as
+//! `resvg --shape-rendering crispEdges` would: usvg parses it (layertrace builds usvg without
+//! text support, so `<text>` is dropped) with `crispEdges` as the default shape rendering (a
+//! `shape-rendering` attribute or style in the document wins, as in resvg), and
+//! [`resvg::render`] paints the tree into a tiny-skia pixmap at one pixel per user unit after
+//! the document's own transforms (viewBox included), fills and strokes alike. With
+//! `crispEdges` resvg turns tiny-skia's anti-aliasing off, so an opaque paint leaves every
+//! pixel at alpha 0 or 255; a pixel is foreground when its alpha is above 0 (painted at all,
+//! also by a translucent paint or an anti-aliased path the document asks for).
 //!
-//! tiny-skia's non-anti-aliased scan converter (`scan/path.rs`, `edge.rs`, after Skia)
-//! samples pixel centres: an edge covers row `y` when `y + 0.5` lies in `(y0, y1]` of the
-//! edge (`fdot6::round` of its ends), and a span covers pixel `x` when `x + 0.5` lies in
-//! `(x_left, x_right]` of the crossings at height `y + 0.5` (`fdot16::round_to_i32`). So pixel
-//! `(x, y)` is painted iff its centre `(x + 0.5, y + 0.5)` is inside the path — which is
-//! what the choice of border level assumes (see [`crate::level`]) — up to two
-//! approximations of the rasterizer:
-//! * vertices are truncated to 1/64 pixel (26.6 fixed point) and crossings interpolated in
-//!   16.16 fixed point;
-//! * curves are cut into line edges by forward differencing with only ~1/8 to 1/2 pixel
-//!   accuracy (`diff_to_shift`), far coarser than the margins the exact curves keep to pixel
-//!   centres. To measure the geometry rather than that shortcut, [`rasterize_svg`] flattens
-//!   every path itself with kurbo within [`FLATTEN_TOLERANCE`] before filling, so tiny-skia
-//!   only sees line edges.
+//! No curve is flattened here: the figures are those of the renderer, with its own
+//! approximations.
+//! * usvg turns elliptical arcs `A` into cubics within 0.1 pixel (kurbo's
+//!   `Arc::to_cubic_beziers(0.1)` in svgtypes' path simplification) and keeps quadratic and
+//!   cubic Béziers as they are.
+//! * tiny-skia (after Skia, `edge.rs`, `edge_builder.rs`) cuts each quadratic or cubic into
+//!   2^k line edges by forward differencing, `k` chosen by `diff_to_shift` from the curve's
+//!   deviation for roughly 1/8 to 1/2 pixel accuracy (at most 2^6 edges), so a curve can be
+//!   drawn that far from its true course.
+//! * Vertices are rounded to 1/64 pixel (26.6 fixed point) and crossings interpolated in
+//!   16.16 fixed point.
+//! * Without anti-aliasing tiny-skia samples pixel centres (`scan/path.rs`): an edge covers
+//!   row `y` when `y + 0.5` lies in `(y0, y1]` of the edge, and a span covers pixel `x` when
+//!   `x + 0.5` lies in `(x_left, x_right]` of the crossings at height `y + 0.5`. So pixel
+//!   `(x, y)` is painted iff its centre `(x + 0.5, y + 0.5)` is inside the drawn polygon —
+//!   which is what the choice of border level assumes (see [`crate::level`]); the pixels
+//!   that differ come from the approximations above.
 //!
-//! usvg itself turns elliptical arcs into cubics within 0.1 pixel (kurbo's
-//! `Arc::to_cubic_beziers(0.1)` in svgtypes' path simplification); the arcs layertrace
-//! writes are short pieces, for which that conversion is much closer than its bound.
+//! [`staircases`] counts pixel staircases in the path data (see its module).
 
 use crate::bitmap::Mask;
 use crate::error::Error;
-use kurbo::{BezPath, PathEl, Point};
 
-/// Tolerance (pixels) of the flattening of curves done by [`rasterize_svg`] before filling
-/// (raised to `1e-8` times the path's extent for paths over 100 000 pixels wide).
-pub const FLATTEN_TOLERANCE: f64 = 1e-3;
+mod staircase;
+
+pub use staircase::{path_staircases, staircases, StaircaseCount};
 
 /// The comparison of an expected mask with the mask of its rasterized SVG.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,81 +54,35 @@ pub struct FidelityReport {
     pub iou: f64,
 }
 
-fn point(p: tiny_skia::Point) -> Point {
-    Point::new(f64::from(p.x), f64::from(p.y))
+/// The pixmap `resvg --shape-rendering crispEdges` paints for `svg`, at `width` × `height`.
+fn render(svg: &str, width: u32, height: u32) -> Result<tiny_skia::Pixmap, Error> {
+    let options = usvg::Options {
+        shape_rendering: usvg::ShapeRendering::CrispEdges,
+        ..usvg::Options::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &options).map_err(|source| Error::SvgParse { source })?;
+    let mut pixmap =
+        tiny_skia::Pixmap::new(width, height).ok_or(Error::Raster { width, height })?;
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::identity(),
+        &mut pixmap.as_mut(),
+    );
+    Ok(pixmap)
 }
 
-/// The path after `transform`, flattened into line segments.
-fn flatten(path: &tiny_skia::Path, transform: tiny_skia::Transform) -> Option<tiny_skia::Path> {
-    let path = path.clone().transform(transform)?;
-    let mut bez = BezPath::new();
-    for seg in path.segments() {
-        use tiny_skia::PathSegment as S;
-        bez.push(match seg {
-            S::MoveTo(p) => PathEl::MoveTo(point(p)),
-            S::LineTo(p) => PathEl::LineTo(point(p)),
-            S::QuadTo(c, p) => PathEl::QuadTo(point(c), point(p)),
-            S::CubicTo(c1, c2, p) => PathEl::CurveTo(point(c1), point(c2), point(p)),
-            S::Close => PathEl::ClosePath,
-        });
-    }
-    // Bounded work on absurd coordinates: the tolerance grows with the path's extent.
-    let b = path.bounds();
-    let extent = f64::from(b.width().max(b.height()));
-    let tolerance = FLATTEN_TOLERANCE.max(extent * 1e-8);
-    let mut pb = tiny_skia::PathBuilder::new();
-    kurbo::flatten(bez, tolerance, |el| match el {
-        PathEl::MoveTo(p) => pb.move_to(p.x as f32, p.y as f32),
-        PathEl::LineTo(p) => pb.line_to(p.x as f32, p.y as f32),
-        PathEl::ClosePath => pb.close(),
-        // `flatten` emits only the three above.
-        PathEl::QuadTo(_, p) | PathEl::CurveTo(_, _, p) => pb.line_to(p.x as f32, p.y as f32),
-    });
-    pb.finish()
-}
-
-fn fill_group(group: &usvg::Group, pixmap: &mut tiny_skia::Pixmap) {
-    for node in group.children() {
-        match node {
-            usvg::Node::Group(g) => fill_group(g, pixmap),
-            usvg::Node::Path(p) => {
-                let Some(fill) = p.fill() else { continue };
-                if !p.is_visible() {
-                    continue;
-                }
-                let Some(path) = flatten(p.data(), p.abs_transform()) else {
-                    continue;
-                };
-                let rule = match fill.rule() {
-                    usvg::FillRule::NonZero => tiny_skia::FillRule::Winding,
-                    usvg::FillRule::EvenOdd => tiny_skia::FillRule::EvenOdd,
-                };
-                let mut paint = tiny_skia::Paint::default();
-                paint.set_color_rgba8(0, 0, 0, 255);
-                paint.anti_alias = false;
-                pixmap.fill_path(&path, &paint, rule, tiny_skia::Transform::identity(), None);
-            }
-            _ => {}
-        }
-    }
-}
-
-/// Rasterizes `svg` onto a `width` × `height` mask: usvg parse, every path flattened and
-/// filled by tiny-skia without anti-aliasing (a pixel is painted when its centre is inside).
+/// Renders `svg` onto a `width` × `height` mask as `resvg --shape-rendering crispEdges` does
+/// (see the module documentation): a pixel is foreground when painted.
 ///
 /// Fails with [`Error::SvgParse`] when usvg rejects the document and with
 /// [`Error::Raster`] when no pixmap of that size can be made (zero or huge size).
 pub fn rasterize_svg(svg: &str, width: u32, height: u32) -> Result<Mask, Error> {
-    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
-        .map_err(|source| Error::SvgParse { source })?;
-    let mut pixmap =
-        tiny_skia::Pixmap::new(width, height).ok_or(Error::Raster { width, height })?;
-    fill_group(tree.root(), &mut pixmap);
+    let pixmap = render(svg, width, height)?;
     let mut mask = Mask::new(width, height);
+    let w = u64::from(width);
     for (i, px) in pixmap.pixels().iter().enumerate() {
         if px.alpha() > 0 {
             let i = i as u64;
-            let w = u64::from(width);
             mask.set((i % w) as i64, (i / w) as i64, true);
         }
     }
@@ -196,6 +156,43 @@ mod tests {
             <path d="M0.51 0.51L4 0.51L4 3L0.51 3Z"/></svg>"#;
         let m = rasterize_svg(svg, 4, 3).unwrap();
         assert_eq!(m.to_ascii(), "....\n.###\n.###\n");
+    }
+
+    #[test]
+    fn crisp_edges_by_default_unless_the_document_says_otherwise() {
+        let disc = |attr: &str| {
+            format!(
+                r#"<svg xmlns="http://www.w3.org/2000/svg" width="20" height="20"><circle cx="10" cy="10" r="7.3"{attr}/></svg>"#
+            )
+        };
+        let alphas = |svg: &str| {
+            let p = render(svg, 20, 20).unwrap();
+            let mut a: Vec<u8> = p.pixels().iter().map(|px| px.alpha()).collect();
+            a.sort_unstable();
+            a.dedup();
+            a
+        };
+        assert_eq!(alphas(&disc("")), [0, 255]);
+        let smooth = disc(r#" shape-rendering="geometricPrecision""#);
+        assert!(alphas(&smooth).len() > 2);
+        // Every painted pixel is foreground: the anti-aliased disc covers the crisp one.
+        let (crisp, aa) = (
+            rasterize_svg(&disc(""), 20, 20).unwrap(),
+            rasterize_svg(&smooth, 20, 20).unwrap(),
+        );
+        let r = compare(&aa, &crisp);
+        assert!(r.missing > 0 && r.extra == 0);
+    }
+
+    #[test]
+    fn strokes_are_drawn_too() {
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="6" height="6">
+            <path d="M0 3H6" fill="none" stroke="black" stroke-width="2"/></svg>"#;
+        let m = rasterize_svg(svg, 6, 6).unwrap();
+        assert_eq!(
+            m.to_ascii(),
+            "......\n......\n######\n######\n......\n......\n"
+        );
     }
 
     #[test]

@@ -5,7 +5,8 @@
 //! [`load_path`] (image → foreground [`Mask`]), [`trace`] (borders as 8-connected pixel
 //! paths), [`decompose`] (greedy pieces, each with an exact [`Certificate`] from the
 //! [`Recognizer`]), then [`decomposition_json`], [`decomposition_picture`] and
-//! [`svg_document`], and [`fidelity`] to rasterize the SVG back and count differing pixels.
+//! [`svg_document`], and [`fidelity`] to render the SVG back as resvg draws it and count
+//! differing pixels ([`staircases`] counts pixel staircases in its path data).
 //!
 //! ```
 //! use layertrace::{decompose, fidelity, svg_document, trace, Convention, Mask, Model,
@@ -70,7 +71,8 @@ pub use export::svg::{
     SvgOutput, JUNCTION_MAX_DISTANCE,
 };
 pub use fidelity::{
-    compare, diff_image, fidelity, rasterize_svg, FidelityReport, FLATTEN_TOLERANCE,
+    compare, diff_image, fidelity, path_staircases, rasterize_svg, staircases, FidelityReport,
+    StaircaseCount,
 };
 pub use level::{
     border_polynomial, boundary_level, curve_kind, level_polynomial, piece_kind, polynomial_of,

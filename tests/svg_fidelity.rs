@@ -1,14 +1,16 @@
 //! SVG export and fidelity round trip on the sample images.
 //!
-//! The fidelity bounds are measured figures, lowered whenever the output gets better (a
-//! change that raises one says why in its commit); a failing comparison writes `expected`, `actual` and `diff` PNGs to
-//! `target/fidelity-failures/`.
+//! The round trip renders the SVG with the resvg crate as `resvg --shape-rendering
+//! crispEdges` does ([`rasterize_svg`]). The bounds are measured figures, lowered whenever
+//! the output gets better (a change that raises one says why in its commit); a failing
+//! comparison writes `<sample>-<model>-{expected,actual,diff}.png` to
+//! `target/fidelity-failures/` and names them.
 
 use kurbo::{Arc, Point};
 use layertrace::{
-    compare, contour_path, decompose, diff_image, load_path, rasterize_svg, svg_document, trace,
-    Contour, Convention, Decomposition, LoadOptions, Mask, Model, OutlierRule, PathCommand,
-    SvgOptions,
+    compare, contour_path, decompose, diff_image, load_path, rasterize_svg, staircases,
+    svg_document, trace, Contour, Convention, Decomposition, FidelityReport, LoadOptions, Mask,
+    Model, OutlierRule, PathCommand, SvgOptions,
 };
 use std::path::{Path, PathBuf};
 
@@ -37,10 +39,20 @@ fn json(name: &str) -> serde_json::Value {
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
-/// Writes expected/actual/diff PNGs and returns where.
-fn save_failure(tag: &str, expected: &Mask, actual: &Mask) -> String {
+/// The golden round trip: renders `svg` as resvg does and compares it with `expected`.
+/// When more than `bound` pixels differ, writes `target/fidelity-failures/TAG-expected.png`,
+/// `TAG-actual.png` and `TAG-diff.png` (see [`diff_image`]) and returns a message naming
+/// them.
+fn round_trip(tag: &str, expected: &Mask, svg: &str, bound: u64) -> Result<FidelityReport, String> {
+    let actual = rasterize_svg(svg, expected.width(), expected.height())
+        .map_err(|e| format!("{tag}: {e}"))?;
+    let r = compare(expected, &actual);
+    if r.differing <= bound {
+        return Ok(r);
+    }
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/fidelity-failures");
     let _ = std::fs::create_dir_all(&dir);
+    let tag = tag.replace(':', "");
     let img = |m: &Mask| {
         image::GrayImage::from_fn(m.width(), m.height(), |x, y| {
             image::Luma([if m.get(i64::from(x), i64::from(y)) {
@@ -50,13 +62,16 @@ fn save_failure(tag: &str, expected: &Mask, actual: &Mask) -> String {
             }])
         })
     };
-    let _ = img(expected).save(dir.join(format!("{tag}_expected.png")));
-    let _ = img(actual).save(dir.join(format!("{tag}_actual.png")));
-    let _ = diff_image(expected, actual).save(dir.join(format!("{tag}_diff.png")));
-    format!(
-        "{}/{tag}_{{expected,actual,diff}}.png (diff: red missing, blue extra)",
+    let _ = img(expected).save(dir.join(format!("{tag}-expected.png")));
+    let _ = img(&actual).save(dir.join(format!("{tag}-actual.png")));
+    let _ = diff_image(expected, &actual).save(dir.join(format!("{tag}-diff.png")));
+    Err(format!(
+        "{tag}: {} differing ({} missing, {} extra) > {bound}; see {}/{tag}-{{expected,actual,diff}}.png (diff: red missing, blue extra)",
+        r.differing,
+        r.missing,
+        r.extra,
         dir.display()
-    )
+    ))
 }
 
 /// The arcs of the contour whose pixels surround `centre`, as kurbo arcs, and its number of
@@ -274,66 +289,81 @@ fn crack_outlines_are_exact() {
         let mut d = decomposition(&mask, Model::Line);
         d.pieces.iter_mut().for_each(Vec::clear);
         let out = svg_document(&d, mask.width(), mask.height(), &SvgOptions::default());
-        let actual = rasterize_svg(&out.svg, mask.width(), mask.height()).expect("rasterizes");
-        let r = compare(&mask, &actual);
-        if r.differing != 0 {
-            let at = save_failure(&format!("cracks_{name}"), &mask, &actual);
-            panic!("{name}: {} missing, {} extra; see {at}", r.missing, r.extra);
+        let name = name.trim_end_matches(".png");
+        if let Err(e) = round_trip(&format!("{name}-cracks"), &mask, &out.svg, 0) {
+            panic!("{e}");
         }
         assert_eq!(out.commands.arc + out.commands.quad + out.commands.cubic, 0);
     }
 }
 
-/// Largest number of differing pixels measured for each sample and model.
-const BOUNDS: &[(&str, Model, u64)] = &[
-    ("digits_liberationsans_cap40", Model::Line, 3),
-    ("digits_liberationsans_cap40", Model::Circle, 0),
-    ("digits_liberationsans_cap40", Model::Conic, 3),
-    ("glyph_S_dejavusans_cap120", Model::Line, 0),
-    ("glyph_S_dejavusans_cap120", Model::Circle, 0),
-    ("glyph_S_dejavusans_cap120", Model::Conic, 0),
-    ("glyph_at_dejavusans_cap40", Model::Line, 0),
-    ("glyph_at_dejavusans_cap40", Model::Circle, 0),
-    ("glyph_at_dejavusans_cap40", Model::Conic, 0),
-    ("glyph_g_liberationserif_cap120", Model::Line, 1),
-    ("glyph_g_liberationserif_cap120", Model::Circle, 0),
-    ("glyph_g_liberationserif_cap120", Model::Conic, 0),
-    ("lineart_cat_symbola_h300", Model::Line, 4),
-    ("lineart_cat_symbola_h300", Model::Circle, 1),
-    ("lineart_cat_symbola_h300", Model::Conic, 0),
-    ("sil_horse_skimage", Model::Line, 2),
-    ("sil_horse_skimage", Model::Circle, 5),
-    ("sil_horse_skimage", Model::Conic, 2),
-    ("suits_black_dejavusans_cap120", Model::Line, 0),
-    ("suits_black_dejavusans_cap120", Model::Circle, 0),
-    ("suits_black_dejavusans_cap120", Model::Conic, 0),
-    ("syn_big3000_many_shapes", Model::Line, 15),
-    ("syn_big3000_many_shapes", Model::Circle, 14),
-    ("syn_big3000_many_shapes", Model::Conic, 12),
-    ("syn_border_touching", Model::Line, 0),
-    ("syn_border_touching", Model::Circle, 0),
-    ("syn_border_touching", Model::Conic, 0),
-    ("syn_digital_circle_1px", Model::Line, 0),
-    ("syn_digital_circle_1px", Model::Circle, 0),
-    ("syn_digital_circle_1px", Model::Conic, 0),
-    ("syn_discs_r3_to_r200", Model::Line, 3),
-    ("syn_discs_r3_to_r200", Model::Circle, 2),
-    ("syn_discs_r3_to_r200", Model::Conic, 35),
-    ("syn_ellipses_rotated", Model::Line, 1),
-    ("syn_ellipses_rotated", Model::Circle, 0),
-    ("syn_ellipses_rotated", Model::Conic, 0),
-    ("syn_fig15_ellipse_two_holes", Model::Line, 0),
-    ("syn_fig15_ellipse_two_holes", Model::Circle, 0),
-    ("syn_fig15_ellipse_two_holes", Model::Conic, 9),
-    ("syn_polygons_sharp", Model::Line, 4),
-    ("syn_polygons_sharp", Model::Circle, 4),
-    ("syn_polygons_sharp", Model::Conic, 0),
-    ("syn_tiny_blobs", Model::Line, 0),
-    ("syn_tiny_blobs", Model::Circle, 0),
-    ("syn_tiny_blobs", Model::Conic, 0),
-    ("word_Layers_dejavusans-bold_cap40", Model::Line, 1),
-    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 0),
-    ("word_Layers_dejavusans-bold_cap40", Model::Conic, 0),
+/// Largest number of differing pixels (in resvg) and of staircase runs measured for each
+/// sample and model.
+const BOUNDS: &[(&str, Model, u64, u64)] = &[
+    ("digits_liberationsans_cap40", Model::Line, 3, 14),
+    ("digits_liberationsans_cap40", Model::Circle, 124, 22),
+    ("digits_liberationsans_cap40", Model::Conic, 94, 13),
+    ("digits_liberationsans_cap40", Model::Poly(3), 221, 22),
+    ("glyph_S_dejavusans_cap120", Model::Line, 0, 0),
+    ("glyph_S_dejavusans_cap120", Model::Circle, 70, 1),
+    ("glyph_S_dejavusans_cap120", Model::Conic, 58, 0),
+    ("glyph_S_dejavusans_cap120", Model::Poly(3), 34, 2),
+    ("glyph_at_dejavusans_cap40", Model::Line, 0, 6),
+    ("glyph_at_dejavusans_cap40", Model::Circle, 41, 1),
+    ("glyph_at_dejavusans_cap40", Model::Conic, 43, 2),
+    ("glyph_at_dejavusans_cap40", Model::Poly(3), 29, 3),
+    ("glyph_g_liberationserif_cap120", Model::Line, 1, 5),
+    ("glyph_g_liberationserif_cap120", Model::Circle, 73, 6),
+    ("glyph_g_liberationserif_cap120", Model::Conic, 44, 4),
+    ("glyph_g_liberationserif_cap120", Model::Poly(3), 25, 8),
+    ("lineart_cat_symbola_h300", Model::Line, 4, 38),
+    ("lineart_cat_symbola_h300", Model::Circle, 328, 26),
+    ("lineart_cat_symbola_h300", Model::Conic, 214, 25),
+    ("lineart_cat_symbola_h300", Model::Poly(3), 118, 42),
+    ("sil_horse_skimage", Model::Line, 2, 9),
+    ("sil_horse_skimage", Model::Circle, 141, 14),
+    ("sil_horse_skimage", Model::Conic, 84, 8),
+    ("sil_horse_skimage", Model::Poly(3), 32, 19),
+    ("suits_black_dejavusans_cap120", Model::Line, 0, 12),
+    ("suits_black_dejavusans_cap120", Model::Circle, 120, 12),
+    ("suits_black_dejavusans_cap120", Model::Conic, 89, 6),
+    ("suits_black_dejavusans_cap120", Model::Poly(3), 41, 15),
+    ("syn_big3000_many_shapes", Model::Line, 15, 482),
+    ("syn_big3000_many_shapes", Model::Circle, 3954, 333),
+    ("syn_big3000_many_shapes", Model::Conic, 3619, 325),
+    ("syn_big3000_many_shapes", Model::Poly(3), 2324, 518),
+    ("syn_border_touching", Model::Line, 0, 5),
+    ("syn_border_touching", Model::Circle, 43, 1),
+    ("syn_border_touching", Model::Conic, 59, 0),
+    ("syn_border_touching", Model::Poly(3), 24, 2),
+    ("syn_digital_circle_1px", Model::Line, 0, 8),
+    ("syn_digital_circle_1px", Model::Circle, 190, 0),
+    ("syn_digital_circle_1px", Model::Conic, 134, 0),
+    ("syn_digital_circle_1px", Model::Poly(3), 20, 8),
+    ("syn_discs_r3_to_r200", Model::Line, 3, 42),
+    ("syn_discs_r3_to_r200", Model::Circle, 438, 35),
+    ("syn_discs_r3_to_r200", Model::Conic, 352, 29),
+    ("syn_discs_r3_to_r200", Model::Poly(3), 166, 44),
+    ("syn_ellipses_rotated", Model::Line, 1, 14),
+    ("syn_ellipses_rotated", Model::Circle, 238, 21),
+    ("syn_ellipses_rotated", Model::Conic, 343, 5),
+    ("syn_ellipses_rotated", Model::Poly(3), 68, 19),
+    ("syn_fig15_ellipse_two_holes", Model::Line, 0, 4),
+    ("syn_fig15_ellipse_two_holes", Model::Circle, 112, 13),
+    ("syn_fig15_ellipse_two_holes", Model::Conic, 274, 5),
+    ("syn_fig15_ellipse_two_holes", Model::Poly(3), 23, 16),
+    ("syn_polygons_sharp", Model::Line, 4, 5),
+    ("syn_polygons_sharp", Model::Circle, 4, 5),
+    ("syn_polygons_sharp", Model::Conic, 0, 6),
+    ("syn_polygons_sharp", Model::Poly(3), 0, 6),
+    ("syn_tiny_blobs", Model::Line, 0, 9),
+    ("syn_tiny_blobs", Model::Circle, 0, 8),
+    ("syn_tiny_blobs", Model::Conic, 0, 9),
+    ("syn_tiny_blobs", Model::Poly(3), 0, 8),
+    ("word_Layers_dejavusans-bold_cap40", Model::Line, 1, 7),
+    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 43, 8),
+    ("word_Layers_dejavusans-bold_cap40", Model::Conic, 24, 2),
+    ("word_Layers_dejavusans-bold_cap40", Model::Poly(3), 26, 3),
 ];
 
 #[test]
@@ -345,21 +375,22 @@ fn sample_fidelity_does_not_regress() {
         .collect::<std::collections::BTreeSet<_>>()
     {
         let mask = load(&format!("{name}.png"));
-        for &(_, model, bound) in BOUNDS.iter().filter(|b| b.0 == name) {
+        for &(_, model, bound, stairs) in BOUNDS.iter().filter(|b| b.0 == name) {
             let out = svg_document(
                 &decomposition(&mask, model),
                 mask.width(),
                 mask.height(),
                 &SvgOptions::default(),
             );
-            let actual = rasterize_svg(&out.svg, mask.width(), mask.height()).expect("rasterizes");
-            let r = compare(&mask, &actual);
-            assert_eq!(r.foreground, mask.count_foreground());
-            if r.differing > bound {
-                let at = save_failure(&format!("{name}_{model}"), &mask, &actual);
+            match round_trip(&format!("{name}-{model}"), &mask, &out.svg, bound) {
+                Ok(r) => assert_eq!(r.foreground, mask.count_foreground()),
+                Err(e) => failures.push(e),
+            }
+            let s = staircases(&out.svg).expect("parses");
+            if s.runs > stairs {
                 failures.push(format!(
-                    "{name} {model}: {} differing ({} missing, {} extra) > {bound}; see {at}",
-                    r.differing, r.missing, r.extra
+                    "{name} {model}: {} staircase runs ({} segments) > {stairs}",
+                    s.runs, s.segments
                 ));
             }
         }
@@ -390,11 +421,8 @@ fn comb_is_exact_with_the_default_clearance() {
             400,
             &SvgOptions::default(),
         );
-        let actual = rasterize_svg(&out.svg, 400, 400).expect("rasterizes");
-        let r = compare(&mask, &actual);
-        if r.differing > 0 {
-            let at = save_failure(&format!("comb_{model}"), &mask, &actual);
-            panic!("comb {model}: {} differing; see {at}", r.differing);
+        if let Err(e) = round_trip(&format!("comb-{model}"), &mask, &out.svg, 0) {
+            panic!("{e}");
         }
         // The outline has 2 · 10 + 2 straight sides per tooth row: far fewer commands than
         // its 4 000 boundary pixels.

@@ -42,8 +42,9 @@ pub struct Args {
     #[arg(short, long, value_name = "OUT.svg")]
     pub output: Option<PathBuf>,
 
-    /// Rasterize the SVG back (usvg + tiny-skia, no anti-aliasing) and report on standard
-    /// error: differing pixels, IoU, path commands by type, SVG size.
+    /// Render the SVG back as `resvg --shape-rendering crispEdges` does and report on
+    /// standard error: differing pixels, IoU, path commands by type, SVG size, pixel
+    /// staircases (runs of 4 or more alternating axis-aligned steps of at most 2 px).
     #[arg(long)]
     pub report: bool,
 

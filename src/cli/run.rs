@@ -3,9 +3,9 @@
 use super::args::Args;
 use layertrace::{
     compare, decompose, decomposition_json, decomposition_picture, default_scale, diff_image,
-    load_path, piece_kind, png_bytes, rasterize_svg, svg_document, trace, Basis, Compat,
-    Convention, CurveKind, Error, JsonHeader, LoadOptions, OutlierRule, OutputSet, SvgOptions,
-    Threshold,
+    load_path, piece_kind, png_bytes, rasterize_svg, staircases, svg_document, trace, Basis,
+    Compat, Convention, CurveKind, Error, JsonHeader, LoadOptions, OutlierRule, OutputSet,
+    SvgOptions, Threshold,
 };
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -140,6 +140,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     c.close,
                     out.fallbacks,
                     out.max_fit_error
+                );
+                let s = staircases(&out.svg)?;
+                eprintln!(
+                    "staircases: {} runs, {} segments in runs (of {} straight segments)",
+                    s.runs, s.segments, s.lines
                 );
             }
         }

