@@ -59,7 +59,8 @@ pub use curve::{
     ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
 };
 pub use decompose::{
-    decompose, decompose_points, neighbour_sides, piece_outliers, Decomposition, OutlierRule, Piece,
+    decompose, decompose_points, decompose_points_within, decompose_within, neighbour_sides,
+    piece_outliers, Cut, Decomposition, OutlierRule, Piece, WorkBudget,
 };
 pub use error::Error;
 pub use export::json::{decomposition_json, JsonHeader};
