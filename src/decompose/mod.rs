@@ -269,8 +269,15 @@ pub fn decompose_points_within(
         });
         i = j + 1;
     }
+    // Most contours of noisy images have one or two pieces: without this, each would keep
+    // the capacity of four (about 700 bytes).
+    pieces.shrink_to_fit();
     pieces
 }
+
+/// Contours decomposed per parallel task: statistics are kept per task, not per contour
+/// (two million tiny contours would otherwise hold 200 MB of them).
+const CONTOURS_PER_TASK: usize = 256;
 
 /// Decomposes every contour with `model`, contours in parallel (rayon), within the default
 /// [`WorkBudget`]; the result does not depend on the number of threads.
@@ -286,25 +293,28 @@ pub fn decompose_within(
     budget: WorkBudget,
 ) -> Decomposition {
     let basis: Arc<dyn Basis> = Arc::new(model.basis());
-    let results: Vec<(Vec<Piece>, Stats)> = contours
-        .par_iter()
+    let results: Vec<(Vec<Vec<Piece>>, Stats)> = contours
+        .par_chunks(CONTOURS_PER_TASK)
         .map_init(
             || Recognizer::new(basis.clone(), &[0, 0]),
-            |rec, c| match rec.as_mut() {
+            |rec, chunk| match rec.as_mut() {
                 Some(rec) => {
                     let before = rec.stats();
-                    let pieces = decompose_points_within(&c.points, rec, rule, budget);
+                    let pieces = chunk
+                        .iter()
+                        .map(|c| decompose_points_within(&c.points, rec, rule, budget))
+                        .collect();
                     (pieces, rec.stats().since(&before))
                 }
-                None => (Vec::new(), Stats::default()),
+                None => (vec![Vec::new(); chunk.len()], Stats::default()),
             },
         )
         .collect();
     let mut stats = Stats::default();
-    let mut pieces = Vec::with_capacity(results.len());
+    let mut pieces = Vec::with_capacity(contours.len());
     for (p, s) in results {
         stats.add(&s);
-        pieces.push(p);
+        pieces.extend(p);
     }
     Decomposition {
         model,
