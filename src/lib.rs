@@ -42,6 +42,7 @@ mod contour;
 mod curve;
 mod decompose;
 mod error;
+mod estimate;
 mod export;
 mod fidelity;
 mod level;
@@ -63,6 +64,10 @@ pub use decompose::{
     piece_outliers, Cut, Decomposition, OutlierRule, Piece, WorkBudget,
 };
 pub use error::Error;
+pub use estimate::{
+    work_estimate, WorkEstimate, DRAW_BYTES_PER_POINT, FIDELITY_BYTES_PER_SVG_BYTE,
+    SVG_BYTES_PER_CONTOUR, SVG_BYTES_PER_POINT,
+};
 pub use export::json::{decomposition_json, JsonHeader};
 pub use export::picture::{decomposition_picture, default_scale};
 pub use export::svg::{
