@@ -43,6 +43,7 @@ mod contour;
 mod curve;
 mod decompose;
 mod error;
+mod estimate;
 mod export;
 mod fidelity;
 mod level;
@@ -61,9 +62,14 @@ pub use curve::{
     ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
 };
 pub use decompose::{
-    decompose, decompose_points, neighbour_sides, piece_outliers, Decomposition, OutlierRule, Piece,
+    decompose, decompose_points, decompose_points_within, decompose_within, neighbour_sides,
+    piece_outliers, Cut, Decomposition, OutlierRule, Piece, WorkBudget,
 };
 pub use error::Error;
+pub use estimate::{
+    work_estimate, WorkEstimate, DRAW_BYTES_PER_POINT, FIDELITY_BYTES_PER_SVG_BYTE,
+    SVG_BYTES_PER_CONTOUR, SVG_BYTES_PER_POINT,
+};
 pub use export::json::{decomposition_json, JsonHeader};
 pub use export::picture::{decomposition_picture, default_scale};
 pub use export::svg::{

@@ -10,6 +10,10 @@
 //!                              "kind": "ellipse"}]}]}
 //! ```
 //!
+//! A piece that ended before a point that might have extended it has a `"cut"` member
+//! after `"kind"`: `"budget"` (its work budget ran out, see [`crate::WorkBudget`]) or
+//! `"undecided"`.
+//!
 //! `f(x, y) = Σ coefficients[i] · basis_i(x − x0, y − y0)`; every inlier has
 //! `lower ≤ f ≤ upper`, the RIGHT outliers are strictly above `upper` and the LEFT ones
 //! strictly below `lower`. All these numbers are exact integers (the constant's coefficient
@@ -104,6 +108,10 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
                 cert.upper,
                 piece_kind(basis_ref, cert).name()
             );
+            if let Some(cut) = p.cut {
+                s.pop();
+                let _ = write!(s, ", \"cut\": \"{}\"}}", cut.name());
+            }
         }
         s.push_str("]}");
     }

@@ -3,3 +3,4 @@
 pub mod json;
 pub mod picture;
 pub mod svg;
+mod winding;

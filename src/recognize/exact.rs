@@ -8,6 +8,7 @@
 //!   `λ_i ≥ 0`, `Σ λ_i = 1`, `Σ λ_i d_i = 0`, computed in exact rational arithmetic.
 
 use super::bareiss;
+use super::budget::{direct_solve_cost, rational_solve_cost, scan_cost, Meter, EXACT_SCAN_FACTOR};
 use super::gjk::{gjk, GjkOutcome, GjkParams};
 use super::scalar::Scalar;
 use super::simplex::Simplex;
@@ -95,6 +96,7 @@ pub(crate) fn round_to_certificate(
     margin: f64,
     max_abs: &[i64],
     tight: &[Vec<i64>],
+    meter: &mut Meter,
 ) -> Option<(Vec<i64>, Extremes)> {
     let ymax = y.iter().fold(0.0f64, |m, v| m.max(f64::abs(*v)));
     if ymax.is_nan() || ymax <= 0.0 || !ymax.is_finite() || margin.is_nan() || margin <= 0.0 {
@@ -115,6 +117,7 @@ pub(crate) fn round_to_certificate(
         // Cheap filter first: the tightest points of D (the simplex) must be positive.
         let plausible = tight.iter().all(|d| dot_i128(&a, d).is_some_and(|v| v > 0));
         if plausible {
+            meter.charge(scan_cost(sets));
             if let Some(e) = verify_certificate(sets, &a) {
                 return Some(reduce_by_gcd(a, e));
             }
@@ -269,18 +272,26 @@ fn barycentric_big(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
 
 /// Decides exactly whether the origin lies in the convex hull of `points`; returns the
 /// points used and their weights (`λ ≥ 0`, `Σλ = 1`, `Σ λ d = 0`) when it does.
-pub(crate) fn origin_in_hull(points: &[Vec<i64>]) -> Option<(Vec<usize>, Vec<BigRational>)> {
+pub(crate) fn origin_in_hull(
+    points: &[Vec<i64>],
+    meter: &mut Meter,
+) -> Option<(Vec<usize>, Vec<BigRational>)> {
     if points.is_empty() {
         return None;
     }
     // The float simplex is usually exactly right: one direct solve.
+    if !meter.try_charge(direct_solve_cost(points[0].len())) {
+        return None;
+    }
     if let Some(w) = barycentric_exact(points) {
         return Some(((0..points.len()).collect(), w));
     }
     let mut list = rational_list(points);
     let mut simplex = Simplex::default();
-    let params = exact_params(list.dim());
-    match gjk(&mut list, &mut simplex, &params).0 {
+    let params = metered_params(exact_params(list.dim()), list.dim(), 0, meter);
+    let (outcome, iterations) = gjk(&mut list, &mut simplex, &params);
+    charge_exact(meter, &params, iterations, list.dim(), 0);
+    match outcome {
         GjkOutcome::OriginInside => Some((
             simplex
                 .vertices
@@ -306,14 +317,17 @@ fn rational_list(points: &[Vec<i64>]) -> ListSupport<BigRational> {
 /// The closest point of `conv(points)` to the origin, exactly, as an integer direction
 /// (`None` if it is the origin, or too large for `i64`). A float run that stalls near a
 /// face of `D` often has the right face: this direction then separates all of `D`.
-pub(crate) fn closest_direction(points: &[Vec<i64>]) -> Option<Vec<i64>> {
+pub(crate) fn closest_direction(points: &[Vec<i64>], meter: &mut Meter) -> Option<Vec<i64>> {
     let mut list = rational_list(points);
     let mut simplex = Simplex::default();
     let params = GjkParams {
         first_separation: false,
         ..exact_params(list.dim())
     };
-    let GjkOutcome::Separated { direction, .. } = gjk(&mut list, &mut simplex, &params).0 else {
+    let params = metered_params(params, list.dim(), 0, meter);
+    let (outcome, iterations) = gjk(&mut list, &mut simplex, &params);
+    charge_exact(meter, &params, iterations, list.dim(), 0);
+    let GjkOutcome::Separated { direction, .. } = outcome else {
         return None;
     };
     let x = integer_direction(&direction);
@@ -322,6 +336,31 @@ pub(crate) fn closest_direction(points: &[Vec<i64>]) -> Option<Vec<i64>> {
         return None;
     }
     x.iter().map(|v| (v / &g).to_i64()).collect()
+}
+
+/// Units of one exact GJK iteration in dimension `n` whose support scans cost `scan` units
+/// in floating point.
+fn exact_iteration_cost(n: usize, scan: u64) -> u64 {
+    rational_solve_cost(n).saturating_add(scan.saturating_mul(EXACT_SCAN_FACTOR))
+}
+
+/// `params` with the iteration cap lowered to what the meter still affords.
+fn metered_params(params: GjkParams, n: usize, scan: u64, meter: &Meter) -> GjkParams {
+    let (cap, _) = meter.iterations(exact_iteration_cost(n, scan), params.max_iterations);
+    GjkParams {
+        max_iterations: cap,
+        ..params
+    }
+}
+
+/// Charges an exact run; marks the meter exhausted when the run used up a cap the meter
+/// lowered (the guard cap of `exact_params` is not a budget matter).
+fn charge_exact(meter: &mut Meter, params: &GjkParams, iterations: usize, n: usize, scan: u64) {
+    meter.charge((iterations as u64).saturating_mul(exact_iteration_cost(n, scan)));
+    if iterations >= params.max_iterations && params.max_iterations < exact_params(n).max_iterations
+    {
+        meter.exhaust();
+    }
 }
 
 fn exact_params(dim: usize) -> GjkParams {
@@ -342,12 +381,21 @@ pub(crate) enum ExactDecision {
     NotDescribed(Vec<Tag>, Vec<BigRational>),
     /// The exact run hit its cap, or its direction does not fit in `i64`.
     Undecided,
+    /// The exact run stopped at the work limit.
+    OverBudget,
 }
 
 /// The exact fallback: the same GJK variant in rational arithmetic, warm-started from the
 /// tags of the float run's simplex.
-pub(crate) fn decide_exactly(sets: &Sets<'_>, warm: &[Tag], max_abs: &[i64]) -> ExactDecision {
+pub(crate) fn decide_exactly(
+    sets: &Sets<'_>,
+    warm: &[Tag],
+    max_abs: &[i64],
+    meter: &mut Meter,
+) -> ExactDecision {
     let mut support = ExactSupport { sets: *sets };
+    let n = max_abs.len();
+    let scan = scan_cost(sets);
     let mut simplex: Simplex<BigRational> = Simplex::default();
     // Warm start from the float run's whole simplex (uniform weights, reduced exactly); if
     // its vertices are affinely dependent in exact arithmetic, from its first vertex.
@@ -357,15 +405,23 @@ pub(crate) fn decide_exactly(sets: &Sets<'_>, warm: &[Tag], max_abs: &[i64]) -> 
         }
         let w = BigRational::new(BigInt::from(1), BigInt::from(warm.len()));
         simplex.weights = vec![w; warm.len()];
+        if !meter.try_charge(rational_solve_cost(n)) {
+            return ExactDecision::OverBudget;
+        }
         if simplex.reduce_to_closest_point(0.0).is_err() {
             simplex.reset_to(support.vertex(&warm[0]));
         }
     }
-    let params = exact_params(max_abs.len());
-    match gjk(&mut support, &mut simplex, &params).0 {
+    let params = metered_params(exact_params(n), n, scan, meter);
+    let (outcome, iterations) = gjk(&mut support, &mut simplex, &params);
+    charge_exact(meter, &params, iterations, n, scan);
+    if matches!(outcome, GjkOutcome::Stalled) && meter.exhausted() {
+        return ExactDecision::OverBudget;
+    }
+    match outcome {
         GjkOutcome::Separated { direction, .. } => {
             let x = integer_direction(&direction);
-            certificate_from_big(sets, &x)
+            certificate_from_big(sets, &x, meter)
         }
         GjkOutcome::OriginInside => ExactDecision::NotDescribed(
             simplex.vertices.iter().map(|v| v.tag).collect(),
@@ -386,7 +442,7 @@ pub(crate) fn decide_exactly(sets: &Sets<'_>, warm: &[Tag], max_abs: &[i64]) -> 
 
 /// An `i64` certificate from an exact separating direction: the direction itself divided by
 /// its gcd when it fits, otherwise roundings of it at growing precision.
-fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt]) -> ExactDecision {
+fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt], meter: &mut Meter) -> ExactDecision {
     let g = x.iter().fold(BigInt::zero(), |g, v| g.gcd(v));
     let reduced: Vec<BigInt> = if g.is_zero() {
         x.to_vec()
@@ -398,6 +454,7 @@ fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt]) -> ExactDecision {
         .map(|v| v.to_i64())
         .collect::<Option<Vec<i64>>>()
     {
+        meter.charge(scan_cost(sets));
         if let Some(e) = verify_certificate(sets, &a) {
             let (a, e) = reduce_by_gcd(a, e);
             return ExactDecision::Described(a, e);
@@ -415,6 +472,7 @@ fn certificate_from_big(sets: &Sets<'_>, x: &[BigInt]) -> ExactDecision {
                 q.round().to_integer().to_i64().unwrap_or(0)
             })
             .collect();
+        meter.charge(scan_cost(sets));
         if let Some(e) = verify_certificate(sets, &a) {
             let (a, e) = reduce_by_gcd(a, e);
             return ExactDecision::Described(a, e);

@@ -27,6 +27,12 @@ impl LiftedSet {
         self.points.len() / self.point_dim.max(1)
     }
 
+    /// Dimension of the liftings.
+    #[inline]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
     /// True when empty.
     #[inline]
     pub fn is_empty(&self) -> bool {

@@ -51,15 +51,18 @@
 //! removals).
 
 mod bareiss;
+mod budget;
 mod conditioning;
 mod exact;
 mod gjk;
 mod lifted;
+mod margin;
 mod scalar;
 mod simplex;
 mod support;
 
 use crate::model::Basis;
+use budget::{direct_solve_cost, scan_cost, Meter};
 use conditioning::{LinearMap, Moments};
 use exact::{
     barycentric_signed, closest_direction, decide_exactly, dot_i128, origin_in_hull, reduce_by_gcd,
@@ -67,6 +70,7 @@ use exact::{
 };
 use gjk::{gjk, GjkOutcome, GjkParams};
 use lifted::LiftedSet;
+pub use margin::{max_margin_direction, small_certificate};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 use simplex::Simplex;
@@ -188,6 +192,8 @@ pub enum Outcome {
     NotDescribed,
     /// Neither could be established (exact guard cap, or liftings overflowing `i64`).
     Undecided,
+    /// Not decided within the work limit ([`Recognizer::set_work_limit`]).
+    OverBudget,
 }
 
 /// Counters of the work done, for benchmarks and reports.
@@ -208,6 +214,10 @@ pub struct Stats {
     pub exact_fallbacks: u64,
     /// Queries answered [`Outcome::Undecided`].
     pub undecided: u64,
+    /// Queries answered [`Outcome::OverBudget`].
+    pub over_budget: u64,
+    /// Work units spent (see [`Recognizer::set_work_limit`]).
+    pub work: u64,
 }
 
 impl Stats {
@@ -220,6 +230,23 @@ impl Stats {
         self.whitened += o.whitened;
         self.exact_fallbacks += o.exact_fallbacks;
         self.undecided += o.undecided;
+        self.over_budget += o.over_budget;
+        self.work += o.work;
+    }
+
+    /// The counters of the work done since `earlier` (counters of the same recognizer).
+    pub fn since(&self, earlier: &Stats) -> Stats {
+        Stats {
+            queries: self.queries - earlier.queries,
+            certificate_reused: self.certificate_reused - earlier.certificate_reused,
+            float_runs: self.float_runs - earlier.float_runs,
+            float_iterations: self.float_iterations - earlier.float_iterations,
+            whitened: self.whitened - earlier.whitened,
+            exact_fallbacks: self.exact_fallbacks - earlier.exact_fallbacks,
+            undecided: self.undecided - earlier.undecided,
+            over_budget: self.over_budget - earlier.over_budget,
+            work: self.work - earlier.work,
+        }
     }
 }
 
@@ -249,6 +276,8 @@ pub struct Recognizer {
     lift: Vec<i64>,
     /// Scratch: the simplex vertices as exact points of `D`.
     diffs: Vec<Vec<i64>>,
+    /// Work since the last reset, and its limit.
+    meter: Meter,
 }
 
 /// Float runs per query at most (separations, convergence, corrections).
@@ -289,6 +318,7 @@ impl Recognizer {
             rel: vec![0; pd],
             lift: vec![0; n],
             diffs: Vec::new(),
+            meter: Meter::unlimited(),
             basis,
         })
     }
@@ -309,6 +339,22 @@ impl Recognizer {
         self.cert_valid = false;
         self.witness = None;
         self.overflow = false;
+        self.meter.spent = 0;
+    }
+
+    /// Limits the work of this piece of queries: once more than `limit` work units have been
+    /// spent since the last [`reset`](Recognizer::reset) (this one's included), a query that
+    /// needs a solve answers [`Outcome::OverBudget`] instead (the limit stays across resets).
+    /// Units are counted, not timed (about a nanosecond each: one multiply-add of a float
+    /// support scan; rational solves are charged `(n+1)³` microseconds), so the answers do
+    /// not depend on the machine. Default: no limit.
+    pub fn set_work_limit(&mut self, limit: u64) {
+        self.meter.limit = limit;
+    }
+
+    /// Work units spent since the last reset.
+    pub fn work(&self) -> u64 {
+        self.meter.spent
     }
 
     /// The basis.
@@ -421,6 +467,7 @@ impl Recognizer {
             Side::Upper => &mut self.upper,
             Side::Lower => &mut self.lower,
         };
+        self.meter.charge(set.len() as u64);
         let Some(i) = set.find(&rel) else {
             return false;
         };
@@ -433,6 +480,7 @@ impl Recognizer {
                     upper: &self.upper,
                     lower: &self.lower,
                 };
+                self.meter.charge(scan_cost(&sets));
                 match verify_certificate(&sets, a) {
                     Some(new) => *e = new,
                     None => self.cert_valid = false,
@@ -495,9 +543,18 @@ impl Recognizer {
             self.stats.certificate_reused += 1;
             return Outcome::Described;
         }
-        let outcome = self.solve();
-        if outcome == Outcome::Undecided {
-            self.stats.undecided += 1;
+        let before = self.meter.spent;
+        let outcome = if self.meter.exhausted() {
+            self.cert_valid = false;
+            Outcome::OverBudget
+        } else {
+            self.solve()
+        };
+        self.stats.work += self.meter.spent - before;
+        match outcome {
+            Outcome::Undecided => self.stats.undecided += 1,
+            Outcome::OverBudget => self.stats.over_budget += 1,
+            _ => {}
         }
         outcome
     }
@@ -541,6 +598,7 @@ impl Recognizer {
                 &mut self.stats,
                 thorough,
                 &mut self.diffs,
+                &mut self.meter,
             )
         };
         let may_whiten = self.inliers.len() >= LinearMap::min_points(n);
@@ -575,17 +633,25 @@ impl Recognizer {
             Some(FloatAnswer::NotDescribed(tags, weights)) => return self.reject(&tags, weights),
             None => {}
         }
+        if self.meter.exhausted() {
+            self.cert_valid = false;
+            return Outcome::OverBudget;
+        }
         // The float run could not prove its answer: decide in exact arithmetic.
         self.stats.exact_fallbacks += 1;
         let warm: Vec<Tag> = self.simplex.vertices.iter().map(|v| v.tag).collect();
         self.simplex.clear();
-        let dec = decide_exactly(&sets, &warm, &self.max_abs);
+        let dec = decide_exactly(&sets, &warm, &self.max_abs, &mut self.meter);
         match dec {
             ExactDecision::Described(a, e) => self.accept(a, e),
             ExactDecision::NotDescribed(tags, weights) => self.reject(&tags, weights),
             ExactDecision::Undecided => {
                 self.cert_valid = false;
                 Outcome::Undecided
+            }
+            ExactDecision::OverBudget => {
+                self.cert_valid = false;
+                Outcome::OverBudget
             }
         }
     }
@@ -626,6 +692,8 @@ enum FloatAnswer {
 /// A float run that sees the origin inside a simplex the exact check puts it outside of drops
 /// the vertex with the most negative exact barycentric weight and goes on (a few times).
 /// `diffs` is scratch space for the simplex's exact points.
+// The recognizer's fields, borrowed one by one (the closure in `solve` holds the others).
+#[allow(clippy::too_many_arguments)]
 fn float_decide(
     sets: Sets<'_>,
     map: &LinearMap,
@@ -634,6 +702,7 @@ fn float_decide(
     stats: &mut Stats,
     thorough: bool,
     diffs: &mut Vec<Vec<i64>>,
+    meter: &mut Meter,
 ) -> Option<FloatAnswer> {
     // The exact points of D at the simplex's vertices, into `diffs` (allocations reused).
     // (Only the first `simplex.len()` entries are meaningful; longer is kept for reuse.)
@@ -660,9 +729,24 @@ fn float_decide(
     let mut params = FLOAT_PARAMS;
     let mut converging = false;
     let mut corrections = 0;
+    // A float iteration: one support scan and a small float solve.
+    let per_iteration = scan_cost(&sets) + (n as u64 + 1).pow(3);
+    let solve_cost = direct_solve_cost(n);
     for _ in 0..MAX_FLOAT_RUNS {
+        if meter.exhausted() {
+            return None;
+        }
+        let (cap, limited) = meter.iterations(per_iteration, FLOAT_PARAMS.max_iterations);
+        params.max_iterations = cap;
         let (outcome, iterations) = gjk(&mut support, simplex, &params);
         stats.float_iterations += iterations as u64;
+        meter.charge(iterations as u64 * per_iteration);
+        if limited && iterations >= cap {
+            meter.exhaust();
+            if matches!(outcome, GjkOutcome::Stalled) {
+                return None;
+            }
+        }
         match outcome {
             GjkOutcome::Separated {
                 direction,
@@ -672,7 +756,8 @@ fn float_decide(
                 let y = map.pull_back(&direction);
                 let k = exact_points(simplex, diffs);
                 let tight = &diffs[..k];
-                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, tight) {
+                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, tight, meter)
+                {
                     return Some(FloatAnswer::Described(a, e));
                 }
                 if converged || converging {
@@ -693,6 +778,9 @@ fn float_decide(
                 }
                 let k = exact_points(simplex, diffs);
                 let points = &diffs[..k];
+                if !meter.try_charge(solve_cost) {
+                    return None;
+                }
                 match barycentric_signed(points) {
                     Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
                         let tags = simplex.vertices.iter().map(|v| v.tag).collect();
@@ -708,11 +796,12 @@ fn float_decide(
                     _ => {
                         // Decide on the simplex exactly: the origin in its hull is a witness;
                         // otherwise its exact closest point may separate all of D.
-                        if let Some((used, weights)) = origin_in_hull(points) {
+                        if let Some((used, weights)) = origin_in_hull(points, meter) {
                             let tags = used.iter().map(|&i| simplex.vertices[i].tag).collect();
                             return Some(FloatAnswer::NotDescribed(tags, weights));
                         }
-                        let a = closest_direction(points)?;
+                        let a = closest_direction(points, meter)?;
+                        meter.charge(scan_cost(&sets));
                         let e = verify_certificate(&sets, &a)?;
                         let (a, e) = reduce_by_gcd(a, e);
                         return Some(FloatAnswer::Described(a, e));
@@ -739,194 +828,6 @@ fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
             }
         })
         .collect()
-}
-
-/// Lifts `points − origin` into a set, raising `max_abs` to bound the liftings. Returns
-/// `None` on overflow or a point (or origin) not of the basis' point dimension.
-fn lift_points<P: AsRef<[i64]>>(
-    basis: &dyn Basis,
-    origin: &[i64],
-    points: &[P],
-    max_abs: &mut [i64],
-) -> Option<LiftedSet> {
-    let (pd, n) = (basis.point_dim(), basis.dim());
-    let mut set = LiftedSet::new(pd, n);
-    let mut f = vec![0; n];
-    let mut rel = vec![0; pd];
-    for p in points {
-        let p = p.as_ref();
-        if p.len() != pd || origin.len() != pd {
-            return None;
-        }
-        for (r, (a, b)) in rel.iter_mut().zip(p.iter().zip(origin)) {
-            *r = a.checked_sub(*b)?;
-        }
-        basis.lift(&rel, &mut f)?;
-        for (m, v) in max_abs.iter_mut().zip(&f) {
-            *m = (*m).max(v.saturating_abs());
-        }
-        set.push(&rel, &f);
-    }
-    Some(set)
-}
-
-/// The float GJK run to convergence in coordinates scaled by `scale`: the direction of
-/// largest margin, unscaled (or, when the run stalls, its last separating direction). `None`
-/// if the sets are not (numerically) separated.
-fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
-    let map = LinearMap::diagonal(scale);
-    let mut support = FloatSupport {
-        sets,
-        map: &map,
-        y: Vec::with_capacity(scale.len()),
-    };
-    let mut simplex = Simplex::default();
-    let params = GjkParams {
-        first_separation: false,
-        ..FLOAT_PARAMS
-    };
-    let direction = match gjk(&mut support, &mut simplex, &params).0 {
-        GjkOutcome::Separated { direction, .. } => direction,
-        // A run can stall short of the 1e-12 relative gap (near-degenerate sets, such as a
-        // conic piece turning a right-angled corner: the comb's teeth stalled at 1e-9)
-        // while its closest point already separates the sets: keep it when its support
-        // point lies strictly beyond the origin. Its margin is then below the largest (on
-        // the samples and a comb, within a relative gap of 1e-3 for 927 of 951 stalled
-        // runs, up to 0.1 for the rest), but far from the certificate's, and the exporter checks the
-        // clearance it leaves anyway.
-        GjkOutcome::Stalled => {
-            let x = simplex.point(scale.len())?;
-            let s = support.support_point(&x)?;
-            let xs: f64 = x.iter().zip(&s.point).map(|(a, b)| a * b).sum();
-            if !(xs > 0.0 && x.iter().all(|v| v.is_finite())) {
-                return None;
-            }
-            x
-        }
-        _ => return None,
-    };
-    Some(map.pull_back(&direction))
-}
-
-/// The separating direction of largest margin between `low` and `high` point sets (relative
-/// to `origin`), and the level half-way between them: `a·F(p) < level` on `low`,
-/// `> level` on `high`, in `f64`. Not a certificate: a drawing aid for exporters, which want
-/// the border curve as far as possible from the pixel centres on either side.
-///
-/// With `scaled`, the margin is measured after scaling each lifted coordinate to magnitude
-/// about one (as the recognizer does); otherwise in the lifted coordinates themselves (for
-/// the line basis, the Euclidean distance in the image).
-///
-/// Returns `None` if either set is empty, a lifting overflows, or no separation is found.
-pub fn max_margin_direction<P: AsRef<[i64]>>(
-    basis: &dyn Basis,
-    origin: &[i64],
-    low: &[P],
-    high: &[P],
-    scaled: bool,
-) -> Option<(Vec<f64>, f64)> {
-    let (pd, n) = (basis.point_dim(), basis.dim());
-    if low.is_empty()
-        || high.is_empty()
-        || origin.len() != pd
-        || low.iter().chain(high).any(|p| p.as_ref().len() != pd)
-    {
-        return None;
-    }
-    let mut max_abs = vec![0i64; n];
-    let low_set = lift_points(basis, origin, low, &mut max_abs)?;
-    let high_set = lift_points(basis, origin, high, &mut max_abs)?;
-    let empty = LiftedSet::new(pd, n);
-    let scale = if scaled {
-        power_of_two_scale(&max_abs)
-    } else {
-        vec![1.0; n]
-    };
-    let sets = Sets {
-        inliers: &low_set,
-        upper: &high_set,
-        lower: &empty,
-    };
-    let y = largest_margin_direction(sets, &scale)?;
-    let value = |row: &[f64]| row.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>();
-    let top = low_set
-        .float_rows()
-        .map(value)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let bottom = high_set
-        .float_rows()
-        .map(value)
-        .fold(f64::INFINITY, f64::min);
-    (top < bottom).then(|| (y, (top + bottom) / 2.0))
-}
-
-/// A certificate for the same sets with small coefficients, for people who read the
-/// equations: the largest-margin direction (GJK run to convergence) rounded at growing
-/// scales, `1, 2, 4, …` for its largest coefficient, the first that verifies exactly, divided
-/// by the gcd of its coefficients. Returns `certificate` itself when that gives nothing
-/// smaller (or the sets cannot be lifted).
-///
-/// `certificate` must describe `inliers` with `upper` above and `lower` below.
-pub fn small_certificate(
-    basis: &dyn Basis,
-    certificate: &Certificate,
-    inliers: &[Vec<i64>],
-    upper: &[Vec<i64>],
-    lower: &[Vec<i64>],
-) -> Certificate {
-    let fallback = certificate.clone();
-    let (pd, n) = (basis.point_dim(), basis.dim());
-    let origin = &certificate.origin;
-    if (upper.is_empty() && lower.is_empty()) || certificate.is_zero() || origin.len() != pd {
-        return fallback;
-    }
-    let mut max_abs = vec![0i64; n];
-    let mut fill = |pts: &[Vec<i64>]| lift_points(basis, origin, pts, &mut max_abs);
-    let (Some(s), Some(u), Some(l)) = (fill(inliers), fill(upper), fill(lower)) else {
-        return fallback;
-    };
-    let sets = Sets {
-        inliers: &s,
-        upper: &u,
-        lower: &l,
-    };
-    let Some(y) = largest_margin_direction(sets, &power_of_two_scale(&max_abs)) else {
-        return fallback;
-    };
-    let ymax = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let old_max = certificate
-        .coefficients
-        .iter()
-        .map(|v| v.unsigned_abs())
-        .max()
-        .unwrap_or(0);
-    if !(ymax.is_finite() && ymax > 0.0) {
-        return fallback;
-    }
-    let mut last: Option<Vec<i64>> = None;
-    for k in 0..62 {
-        let t = f64::from(k).exp2() / ymax;
-        let a: Vec<i64> = y.iter().map(|v| (v * t).round() as i64).collect();
-        if a.iter().any(|v| v.unsigned_abs() >= old_max) {
-            break;
-        }
-        if a.iter().all(|&v| v == 0) || last.as_ref() == Some(&a) {
-            continue;
-        }
-        if let Some(e) = verify_certificate(&sets, &a) {
-            let (a, e) = reduce_by_gcd(a, e);
-            return Certificate {
-                origin: origin.clone(),
-                coefficients: a,
-                lower: e.lower,
-                upper: e.upper,
-                above: e.above,
-                below: e.below,
-            };
-        }
-        last = Some(a);
-    }
-    fallback
 }
 
 /// Decides one recognition problem from scratch (convenience for tests and one-off use).

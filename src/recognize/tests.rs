@@ -580,7 +580,7 @@ proptest! {
         let sets = Sets { inliers: &r.inliers, upper: &r.upper, lower: &r.lower };
         let d = differences(basis.as_ref(), &s[0], &s, &up, &lo);
         let inside = origin_in_conv_brute(&d);
-        match exact::decide_exactly(&sets, &[], &r.max_abs) {
+        match exact::decide_exactly(&sets, &[], &r.max_abs, &mut Meter::unlimited()) {
             exact::ExactDecision::Described(a, e) => {
                 prop_assert!(!inside, "exact says described, oracle says not");
                 let c = Certificate { origin: s[0].clone(), coefficients: a, lower: e.lower, upper: e.upper, above: e.above, below: e.below };
@@ -598,7 +598,9 @@ proptest! {
                 }
                 prop_assert!(sum.iter().all(|v| *v == BigRational::from_integer(0.into())));
             }
-            exact::ExactDecision::Undecided => prop_assert!(false, "undecided"),
+            exact::ExactDecision::Undecided | exact::ExactDecision::OverBudget => {
+                prop_assert!(false, "undecided")
+            }
         }
     }
 }
@@ -634,10 +636,11 @@ fn exact_outcome(r: &Recognizer) -> Outcome {
         upper: &r.upper,
         lower: &r.lower,
     };
-    match exact::decide_exactly(&sets, &[], &r.max_abs) {
+    match exact::decide_exactly(&sets, &[], &r.max_abs, &mut Meter::unlimited()) {
         exact::ExactDecision::Described(..) => Outcome::Described,
         exact::ExactDecision::NotDescribed(..) => Outcome::NotDescribed,
         exact::ExactDecision::Undecided => Outcome::Undecided,
+        exact::ExactDecision::OverBudget => Outcome::OverBudget,
     }
 }
 
@@ -752,6 +755,7 @@ proptest! {
             &mut stats,
             true,
             &mut Vec::new(),
+            &mut Meter::unlimited(),
         );
         match got {
             Some(FloatAnswer::Described(a, e)) => {

@@ -20,6 +20,13 @@
 //! the contour's last point. A two-pixel piece has no interior point, hence no outlier, and is
 //! always accepted. A prefix of a described piece need not be described: the greedy stops at
 //! the first failure all the same. Growth uses the incremental [`Recognizer`].
+//!
+//! # Work budget
+//! A piece may take at most [`WorkBudget::limit`] of its length in recognizer work units
+//! (counted, not timed: see [`WorkBudget`]). A query that would exceed it ends the piece at
+//! the last length that was certified, marked [`Cut::Budget`]; its certificate is as exact
+//! as any other, only the maximality of the greedy is lost. The default budget is far above
+//! what the pieces of the bundled samples need in the line, circle and conic models.
 
 use crate::contour::Contour;
 use crate::model::{Basis, Model};
@@ -27,6 +34,9 @@ use crate::pixel::{Pixel, PixelMap, PixelSet};
 use crate::recognize::{Certificate, Outcome, Recognizer, Side, Stats};
 use rayon::prelude::*;
 use std::sync::Arc;
+
+mod budget;
+pub use budget::{Cut, WorkBudget};
 
 /// One piece of a contour: indices `first..=last` of its points and the layer describing it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -37,6 +47,9 @@ pub struct Piece {
     pub last: usize,
     /// The exact layer: origin `p_first`, RIGHT outliers above, LEFT outliers below.
     pub certificate: Certificate,
+    /// Why the piece ended before a point that might have extended it (`None`: it is
+    /// maximal, or it ends the contour).
+    pub cut: Option<Cut>,
 }
 
 impl Piece {
@@ -158,8 +171,19 @@ fn xy(p: Pixel) -> [i64; 2] {
     [p.x as i64, p.y as i64]
 }
 
-/// Decomposes one contour greedily with the given recognizer (reset for every piece).
+/// Decomposes one contour greedily with the given recognizer (reset for every piece), within
+/// the default [`WorkBudget`].
 pub fn decompose_points(points: &[Pixel], rec: &mut Recognizer, rule: OutlierRule) -> Vec<Piece> {
+    decompose_points_within(points, rec, rule, WorkBudget::default())
+}
+
+/// [`decompose_points`] with the given work budget per piece.
+pub fn decompose_points_within(
+    points: &[Pixel],
+    rec: &mut Recognizer,
+    rule: OutlierRule,
+    budget: WorkBudget,
+) -> Vec<Piece> {
     let n = points.len();
     let mut pieces = Vec::new();
     let mut g = Growth::default();
@@ -184,6 +208,7 @@ pub fn decompose_points(points: &[Pixel], rec: &mut Recognizer, rule: OutlierRul
             below: None,
         });
         let mut j = i;
+        let mut cut = None;
         while j + 1 < n {
             let p = points[j + 1];
             if rule == OutlierRule::NotInPiece {
@@ -222,8 +247,17 @@ pub fn decompose_points(points: &[Pixel], rec: &mut Recognizer, rule: OutlierRul
                     }
                 }
             }
+            rec.set_work_limit(budget.limit(j + 2 - i));
             match rec.recognize() {
                 Outcome::Described if rec.certificate_into(&mut certificate) => j += 1,
+                Outcome::OverBudget => {
+                    cut = Some(Cut::Budget);
+                    break;
+                }
+                Outcome::Undecided => {
+                    cut = Some(Cut::Undecided);
+                    break;
+                }
                 _ => break,
             }
         }
@@ -231,36 +265,56 @@ pub fn decompose_points(points: &[Pixel], rec: &mut Recognizer, rule: OutlierRul
             first: i,
             last: j,
             certificate,
+            cut,
         });
         i = j + 1;
     }
+    // Most contours of noisy images have one or two pieces: without this, each would keep
+    // the capacity of four (about 700 bytes).
+    pieces.shrink_to_fit();
     pieces
 }
 
-/// Decomposes every contour with `model`, contours in parallel (rayon); the result does not
-/// depend on the number of threads.
+/// Contours decomposed per parallel task: statistics are kept per task, not per contour
+/// (two million tiny contours would otherwise hold 200 MB of them).
+const CONTOURS_PER_TASK: usize = 256;
+
+/// Decomposes every contour with `model`, contours in parallel (rayon), within the default
+/// [`WorkBudget`]; the result does not depend on the number of threads.
 pub fn decompose(contours: Vec<Contour>, model: Model, rule: OutlierRule) -> Decomposition {
+    decompose_within(contours, model, rule, WorkBudget::default())
+}
+
+/// [`decompose`] with the given work budget per piece.
+pub fn decompose_within(
+    contours: Vec<Contour>,
+    model: Model,
+    rule: OutlierRule,
+    budget: WorkBudget,
+) -> Decomposition {
     let basis: Arc<dyn Basis> = Arc::new(model.basis());
-    let results: Vec<(Vec<Piece>, Stats)> = contours
-        .par_iter()
+    let results: Vec<(Vec<Vec<Piece>>, Stats)> = contours
+        .par_chunks(CONTOURS_PER_TASK)
         .map_init(
             || Recognizer::new(basis.clone(), &[0, 0]),
-            |rec, c| match rec.as_mut() {
+            |rec, chunk| match rec.as_mut() {
                 Some(rec) => {
                     let before = rec.stats();
-                    let pieces = decompose_points(&c.points, rec, rule);
-                    let after = rec.stats();
-                    (pieces, stats_difference(&after, &before))
+                    let pieces = chunk
+                        .iter()
+                        .map(|c| decompose_points_within(&c.points, rec, rule, budget))
+                        .collect();
+                    (pieces, rec.stats().since(&before))
                 }
-                None => (Vec::new(), Stats::default()),
+                None => (vec![Vec::new(); chunk.len()], Stats::default()),
             },
         )
         .collect();
     let mut stats = Stats::default();
-    let mut pieces = Vec::with_capacity(results.len());
+    let mut pieces = Vec::with_capacity(contours.len());
     for (p, s) in results {
         stats.add(&s);
-        pieces.push(p);
+        pieces.extend(p);
     }
     Decomposition {
         model,
@@ -268,18 +322,6 @@ pub fn decompose(contours: Vec<Contour>, model: Model, rule: OutlierRule) -> Dec
         pieces,
         rule,
         stats,
-    }
-}
-
-fn stats_difference(a: &Stats, b: &Stats) -> Stats {
-    Stats {
-        queries: a.queries - b.queries,
-        certificate_reused: a.certificate_reused - b.certificate_reused,
-        float_runs: a.float_runs - b.float_runs,
-        float_iterations: a.float_iterations - b.float_iterations,
-        whitened: a.whitened - b.whitened,
-        exact_fallbacks: a.exact_fallbacks - b.exact_fallbacks,
-        undecided: a.undecided - b.undecided,
     }
 }
 
