@@ -15,7 +15,7 @@
 //!   [`SVG_BYTES_PER_CONTOUR`] per contour (crack fallbacks are the longest: a few
 //!   commands per pixel), doubled for the string's growth; plus each thread's drawing of a
 //!   contour ([`DRAW_BYTES_PER_POINT`] per point of the longest);
-//! * the fidelity check: the SVG parsed and flattened ([`FIDELITY_BYTES_PER_SVG_BYTE`] per
+//! * the fidelity check: the SVG parsed and rendered by resvg ([`FIDELITY_BYTES_PER_SVG_BYTE`] per
 //!   byte of the document), a `W × H` RGBA pixmap and two bit masks.
 //!
 //! The document is alive during the fidelity check; the pieces during both. The constants
@@ -47,10 +47,11 @@ pub const SVG_BYTES_PER_CONTOUR: u64 = 32;
 /// whole run on a spiral of a million points peaks at 39 bytes per point.
 pub const DRAW_BYTES_PER_POINT: u64 = 128;
 
-/// Memory of the fidelity check per byte of SVG: the parsed path (usvg, tiny-skia), its
-/// copy as kurbo elements and the flattened polygon. Measured: about 14 on the
-/// checkerboard (37 MB of SVG, 530 MB for the check).
-pub const FIDELITY_BYTES_PER_SVG_BYTE: u64 = 20;
+/// Memory of the fidelity check per byte of SVG: the document parsed (roxmltree, usvg), its
+/// path in tiny-skia's form and the edges resvg fills. Measured with the resvg round trip:
+/// 4.5 on the checkerboard (163 MB of SVG, 0.7 GB more peak with `--report` than without);
+/// 8 leaves a margin for cubic-heavy documents.
+pub const FIDELITY_BYTES_PER_SVG_BYTE: u64 = 8;
 
 /// The estimate, in bytes, by stage; [`bytes`](WorkEstimate::bytes) is the peak.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -265,3 +265,25 @@ fn large_image_under_address_space_limit() {
     assert_fails_with(&out, "--max-memory");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Tiny contours by the hundred thousand (a one-pixel checkerboard): the work after tracing
+/// is estimated from the contours and refused before it is allocated when over the limit,
+/// which decoding (90 KB of grey) is far below; no output is written.
+#[test]
+fn work_after_tracing_is_checked_against_max_memory() {
+    let dir = scratch("checker");
+    let img = image::GrayImage::from_fn(300, 300, |x, y| {
+        image::Luma([if (x + y) % 2 == 0 { 0 } else { 255 }])
+    });
+    let path = dir.join("checker.png");
+    img.save(&path).unwrap();
+    let svg = dir.join("c.svg");
+    let (p, s) = (path.to_str().unwrap(), svg.to_str().unwrap());
+    let out = run(&[p, "-o", s, "--report", "--max-memory", "8M"], None);
+    assert_fails_with(&out, "more than the limit of 8 MiB (raise it with --max-memory)");
+    assert!(!svg.exists());
+    let out = run(&[p, "-o", s, "-q"], None);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(svg.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

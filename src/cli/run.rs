@@ -3,9 +3,9 @@
 use super::args::Args;
 use layertrace::{
     compare, decompose, decomposition_json, decomposition_picture, default_scale, diff_image,
-    load_path, piece_kind, png_bytes, rasterize_svg, staircases, svg_document, trace, Basis,
-    Compat, Convention, CurveKind, Error, JsonHeader, LoadOptions, OutlierRule, OutputSet,
-    SvgOptions, Threshold,
+    load_path, piece_kind, png_bytes, rasterize_svg, staircases, svg_document, trace,
+    work_estimate, Basis, Compat, Contour, Convention, CurveKind, Error, JsonHeader, LoadOptions,
+    Mask, OutlierRule, OutputSet, SvgOptions, Threshold,
 };
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -70,6 +70,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         (Convention::Default, OutlierRule::NotInPiece)
     };
     let contours = trace(mask, convention);
+    check_memory(args, &contours, mask, opts.max_memory)?;
     let d = decompose(contours, args.model, rule);
 
     if let Some(id) = json_out {
@@ -185,6 +186,47 @@ pub fn run(args: &Args) -> Result<(), Error> {
             d.model,
             start.elapsed().as_secs_f64() * 1e3
         );
+    }
+    Ok(())
+}
+
+/// Refuses a run whose work after tracing would need more than `limit` bytes, before it
+/// allocates anything: the decomposition, and what the asked outputs need on top of it.
+fn check_memory(args: &Args, contours: &[Contour], mask: &Mask, limit: u64) -> Result<(), Error> {
+    let (w, h) = (mask.width(), mask.height());
+    let e = work_estimate(contours, args.model, w, h, rayon::current_num_threads());
+    let mut needed = e.contours + e.decomposition;
+    let svg = args.output.is_some() || args.report || args.diff.is_some();
+    if svg {
+        let check = args.report || args.diff.is_some();
+        needed += e.svg_document
+            + if check {
+                e.svg_drawing.max(e.fidelity)
+            } else {
+                e.svg_drawing
+            };
+    }
+    if args.json.is_some() {
+        // The JSON text: measured at most 160 bytes per contour point (a one-pixel
+        // checkerboard, every contour a single piece), doubled for the string's growth.
+        let points: u64 = contours.iter().map(|c| c.points.len() as u64).sum();
+        needed += 2 * 160 * (points + contours.len() as u64);
+    }
+    if args.decomposition.is_some() {
+        let k = u64::from(args.scale.unwrap_or_else(|| default_scale(w, h)));
+        needed += 3 * u64::from(w) * k * u64::from(h) * k;
+    }
+    if needed > limit {
+        let path = if args.input == Path::new("-") {
+            PathBuf::from("<stdin>")
+        } else {
+            args.input.clone()
+        };
+        return Err(Error::NeedsMemory {
+            path,
+            needed,
+            limit,
+        });
     }
     Ok(())
 }
