@@ -280,7 +280,10 @@ fn work_after_tracing_is_checked_against_max_memory() {
     let svg = dir.join("c.svg");
     let (p, s) = (path.to_str().unwrap(), svg.to_str().unwrap());
     let out = run(&[p, "-o", s, "--report", "--max-memory", "8M"], None);
-    assert_fails_with(&out, "more than the limit of 8 MiB (raise it with --max-memory)");
+    assert_fails_with(
+        &out,
+        "more than the limit of 8 MiB (raise it with --max-memory)",
+    );
     assert!(!svg.exists());
     let out = run(&[p, "-o", s, "-q"], None);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
