@@ -152,15 +152,9 @@ pub(super) fn ipol_grey(img: &DynamicImage) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bitmap::{threshold_image, LoadOptions, Threshold};
+    use crate::bitmap::tests::fixed;
+    use crate::bitmap::{threshold_image, LoadOptions};
     use image::{ImageBuffer, Luma, Rgb, Rgba};
-
-    fn fixed(t: u8) -> LoadOptions {
-        LoadOptions {
-            threshold: Threshold::Fixed(t),
-            ..LoadOptions::default()
-        }
-    }
 
     fn one_pixel_rgba8(p: [u8; 4]) -> DynamicImage {
         DynamicImage::ImageRgba8(ImageBuffer::from_pixel(1, 1, Rgba(p)))

@@ -355,14 +355,8 @@ pub fn threshold_image(img: &DynamicImage, opts: &LoadOptions) -> Loaded {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bitmap::tests::{crc32, fixed};
     use image::{ImageBuffer, Luma};
-
-    fn fixed(t: u8) -> LoadOptions {
-        LoadOptions {
-            threshold: Threshold::Fixed(t),
-            ..LoadOptions::default()
-        }
-    }
 
     fn png_bytes(img: &DynamicImage) -> Vec<u8> {
         let mut out = Cursor::new(Vec::new());
@@ -466,21 +460,6 @@ mod tests {
             ),
             "{e}"
         );
-    }
-
-    fn crc32(data: &[u8]) -> u32 {
-        let mut crc = 0xffff_ffffu32;
-        for &b in data {
-            crc ^= u32::from(b);
-            for _ in 0..8 {
-                crc = if crc & 1 != 0 {
-                    (crc >> 1) ^ 0xedb8_8320
-                } else {
-                    crc >> 1
-                };
-            }
-        }
-        !crc
     }
 
     #[test]

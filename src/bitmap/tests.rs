@@ -169,7 +169,8 @@ fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
     out.extend_from_slice(&crc.to_be_bytes());
 }
 
-fn crc32(data: &[u8]) -> u32 {
+/// PNG's CRC-32, to forge chunks.
+pub(super) fn crc32(data: &[u8]) -> u32 {
     let mut crc = 0xffff_ffffu32;
     for &b in data {
         crc ^= u32::from(b);
@@ -345,4 +346,12 @@ fn memory_limit_is_checked_before_decoding() {
     assert!(matches!(e, Error::NeedsMemory { .. }), "{e}");
     assert!(load_path(p, &opts(24 << 20, Threshold::Fixed(128))).is_ok());
     assert!(load_path(p, &opts(64 << 20, Threshold::Otsu)).is_ok());
+}
+
+/// Options thresholding at a fixed grey level `t`, the rest default.
+pub(super) fn fixed(t: u8) -> LoadOptions {
+    LoadOptions {
+        threshold: Threshold::Fixed(t),
+        ..LoadOptions::default()
+    }
 }
