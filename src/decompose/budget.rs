@@ -27,13 +27,17 @@ impl WorkBudget {
         per_point: 0,
     };
 
-    /// The default: 2 ms plus 20 µs per point, nominally. The pieces of the bundled samples
+    /// The default: 2 ms plus 5 µs per point, nominally. The pieces of the bundled samples
     /// take at most about 1.1 million units in the conic model (0.1 million for circles),
     /// and their longest ones (466 points) 2 300 units per point; the exact fallback of
-    /// poly:6 (dimension 27) costs 22 million units an iteration and is not afforded.
+    /// poly:6 (dimension 27) costs 22 million units an iteration and is not afforded. The
+    /// work of a growing piece grows faster than its length (each solve scans the piece, and
+    /// the solves per point grow with the piece: 35 for 250 points, 69 for 1 000 on the
+    /// one-pixel spiral), so the per-point part is what keeps the cost per contour pixel
+    /// flat on long contours.
     pub const DEFAULT: WorkBudget = WorkBudget {
         base: 2_000_000,
-        per_point: 20_000,
+        per_point: 5_000,
     };
 
     /// The units a piece of `points` points may take.
