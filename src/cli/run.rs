@@ -213,8 +213,10 @@ fn check_memory(args: &Args, contours: &[Contour], mask: &Mask, limit: u64) -> R
         needed += 2 * 160 * (points + contours.len() as u64);
     }
     if args.decomposition.is_some() {
+        // A picture over decomposition_picture's own bound is refused there, not drawn.
         let k = u64::from(args.scale.unwrap_or_else(|| default_scale(w, h)));
-        needed += 3 * u64::from(w) * k * u64::from(h) * k;
+        let pixels = u64::from(w) * k * u64::from(h) * k;
+        needed += 3 * pixels.min(args.max_pixels.max(1 << 24));
     }
     if needed > limit {
         let path = if args.input == Path::new("-") {
