@@ -22,7 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         files.sort();
     }
-    println!("| sample | model | pieces | M | L | A | Q | C | Z | fallbacks (zero/poly/junction/curve) | joins x/bridged/cracked | missing | extra | max fit err | time ms |");
+    println!("| sample | model | pieces | M | L | A | Q | C | Z | fallbacks (zero/poly/rendered/curve) | joins x/bridged/cracked | missing | extra | max fit err | time ms |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for f in &files {
         let loaded = load_path(f, &LoadOptions::default())?;
@@ -56,7 +56,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 model,
                 d.piece_count(),
                 c.move_to, c.line, c.arc, c.quad, c.cubic, c.close,
-                out.fallbacks, fb.zero_certificate, fb.no_polynomial, fb.junction, fb.curve,
+                out.fallbacks, fb.zero_certificate, fb.no_polynomial, fb.rendered, fb.curve,
                 out.joins.intersection, out.joins.bridged, out.joins.cracked,
                 r.missing, r.extra, out.max_fit_error, ms
             );

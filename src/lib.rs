@@ -48,6 +48,7 @@ mod export;
 mod fidelity;
 mod level;
 mod model;
+mod outline;
 mod output;
 mod pixel;
 mod recognize;
@@ -72,10 +73,7 @@ pub use estimate::{
 };
 pub use export::json::{decomposition_json, JsonHeader};
 pub use export::picture::{decomposition_picture, default_scale};
-pub use export::svg::{
-    contour_path, svg_document, CommandCounts, ContourPath, FallbackCounts, JoinCounts, SvgOptions,
-    SvgOutput, JUNCTION_MAX_DISTANCE,
-};
+pub use export::svg::{svg_document, SvgOptions, SvgOutput};
 pub use fidelity::{
     compare, diff_image, fidelity, path_staircases, rasterize_svg, staircases, FidelityReport,
     StaircaseCount,
@@ -85,6 +83,10 @@ pub use level::{
     CurveKind,
 };
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
+pub use outline::{
+    contour_path, CommandCounts, ContourPath, FallbackCounts, JoinCounts, OutlineOptions,
+    JUNCTION_MAX_DISTANCE, MAX_GRID,
+};
 pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
 pub use pixel::Pixel;
 pub use recognize::{

@@ -303,7 +303,7 @@ fn options_out_of_range_are_refused() {
         vec!["--threads", "20000"],
         vec!["--max-pixels", "0"],
         vec!["--scale", "0"],
-        vec!["--precision", "13"],
+        vec!["--grid", "7"],
         vec!["--fill", "\"/><script>alert(1)</script>"],
         vec!["--fill", "not-a-colour"],
     ] {

@@ -6,11 +6,11 @@
 //! comparison writes `<sample>-<model>-{expected,actual,diff}.png` to
 //! `target/fidelity-failures/` and names them.
 
-use kurbo::{Arc, Point};
+use kurbo::Point;
 use layertrace::{
     compare, contour_path, decompose, diff_image, load_path, rasterize_svg, staircases,
     svg_document, trace, Contour, Convention, Decomposition, FidelityReport, LoadOptions, Mask,
-    Model, OutlierRule, PathCommand, SvgOptions,
+    Model, OutlierRule, OutlineOptions, PathCommand, SvgOptions,
 };
 use std::path::{Path, PathBuf};
 
@@ -74,9 +74,10 @@ fn round_trip(tag: &str, expected: &Mask, svg: &str, bound: u64) -> Result<Fidel
     ))
 }
 
-/// The arcs of the contour whose pixels surround `centre`, as kurbo arcs, and its number of
-/// pieces.
-fn arcs_around(d: &Decomposition, centre: Point, radius: f64) -> (Vec<Arc>, usize) {
+/// Points along the curve commands (quadratics and cubics, nine per command) of the contour
+/// whose pixels surround `centre`, and its number of pieces.
+fn curve_points_around(d: &Decomposition, centre: Point, radius: f64) -> (Vec<Point>, usize) {
+    use kurbo::ParamCurve;
     let basis = d.model.basis();
     let (k, contour): (usize, &Contour) = d
         .contours
@@ -90,17 +91,23 @@ fn arcs_around(d: &Decomposition, centre: Point, radius: f64) -> (Vec<Arc>, usiz
                 })
         })
         .expect("a contour around the shape");
-    let path = contour_path(contour, &d.pieces[k], &basis, 0.05, 0.0);
+    let path = contour_path(contour, &d.pieces[k], &basis, &OutlineOptions::default());
     let mut pen = path.start;
-    let mut arcs = Vec::new();
+    let mut out = Vec::new();
     for c in &path.commands {
-        if let PathCommand::Arc(a) = c {
-            let a = kurbo::SvgArc { from: pen, ..*a };
-            arcs.extend(Arc::from_svg_arc(&a));
+        let seg = match *c {
+            PathCommand::Quad(a, p) => Some(kurbo::PathSeg::Quad(kurbo::QuadBez::new(pen, a, p))),
+            PathCommand::Cubic(a, b, p) => {
+                Some(kurbo::PathSeg::Cubic(kurbo::CubicBez::new(pen, a, b, p)))
+            }
+            _ => None,
+        };
+        if let Some(seg) = seg {
+            out.extend((0..=8).map(|k| seg.eval(f64::from(k) / 8.0)));
         }
         pen = c.end();
     }
-    (arcs, d.pieces[k].len())
+    (out, d.pieces[k].len())
 }
 
 /// Distance from `p` to the ellipse (centre, semi-axes `a ≥ b`, angle `theta`), by sampling.
@@ -115,64 +122,48 @@ fn ellipse_distance(p: Point, centre: Point, a: f64, b: f64, theta: f64) -> f64 
         .fold(f64::INFINITY, f64::min)
 }
 
-/// Every arc of every disc lies within 0.75 px of the true circle; discs decomposed into a
-/// single piece give arcs whose centre and radius are within 0.5 px of the truth, larger
-/// ones (several pieces, each a local fit) within 8 % of the radius (at least 0.5 px) on
-/// average (weighted by the arcs' angles).
+/// The curves drawn for the discs (circles turned into cubics, kept wherever tiny-skia draws
+/// them exactly) lie within 0.8 px of the true circle, within 0.55 px for discs decomposed
+/// into a single piece (the curves keep the background beside every pixel of a piece on
+/// their far side, end pixels included, which moves them up to 0.76 px from the truth).
+/// Measured: 4 of the 19 discs keep curves; the rest are exact polygons.
 #[test]
-fn disc_arcs_match_the_true_circle() {
+fn disc_curves_match_the_true_circle() {
     let mask = load("syn_discs_r3_to_r200.png");
     let d = decomposition(&mask, Model::Circle);
     let spec = json("syn_discs_r3_to_r200.json");
-    let mut single = 0;
+    let (mut with_curves, mut discs) = (0, 0);
     for op in spec["ops"].as_array().expect("ops") {
         let r = op["r"].as_f64().expect("r");
         let centre = Point::new(
             op["cx"].as_f64().expect("cx"),
             op["cy"].as_f64().expect("cy"),
         );
-        let (arcs, pieces) = arcs_around(&d, centre, r);
-        assert!(!arcs.is_empty(), "disc r={r}: no arc");
-        let (mut w, mut dr, mut dc) = (0.0, 0.0, 0.0);
-        for a in &arcs {
-            for k in 0..=8 {
-                let t = a.start_angle + a.sweep_angle * f64::from(k) / 8.0;
-                let p = a.center + kurbo::Vec2::from_angle(t) * a.radii.x;
-                let e = ((p - centre).hypot() - r).abs();
-                assert!(
-                    e <= 0.75,
-                    "disc r={r}: arc point {p:?} is {e} px off the circle"
-                );
-            }
-            let (ec, er) = ((a.center - centre).hypot(), (a.radii.x - r).abs());
-            if pieces == 1 {
-                assert!(
-                    ec <= 0.5 && er <= 0.5,
-                    "disc r={r}: one piece, arc centre {:?} radius {}",
-                    a.center,
-                    a.radii.x
-                );
-            }
-            w += a.sweep_angle.abs();
-            dr += a.sweep_angle.abs() * er;
-            dc += a.sweep_angle.abs() * ec;
+        let (points, pieces) = curve_points_around(&d, centre, r);
+        let bound = if pieces == 1 { 0.55 } else { 0.8 };
+        for p in &points {
+            let e = ((*p - centre).hypot() - r).abs();
+            assert!(
+                e <= bound,
+                "disc r={r}: curve point {p:?} is {e} px off the circle"
+            );
         }
-        single += usize::from(pieces == 1);
-        assert!(
-            dr / w <= (0.08 * r).max(0.5) && dc / w <= (0.08 * r).max(0.5),
-            "disc r={r}: mean radius error {}, centre error {}",
-            dr / w,
-            dc / w
-        );
+        discs += 1;
+        with_curves += usize::from(!points.is_empty());
     }
-    assert!(single >= 4, "only {single} discs in one piece");
+    assert!(
+        with_curves >= 2,
+        "only {with_curves} of {discs} discs have curves"
+    );
 }
 
-/// A rotated ellipse small enough to be one conic piece gives elliptic arcs with the true
-/// axes and angle; on the sample, every elliptic arc lies within 1.25 px of its ellipse (measured 1.07; the
-/// border passes between inlier and background centres, as the true curve does).
+/// A rotated ellipse small enough to be one conic piece is drawn with curves within 0.7 px
+/// of the true ellipse (measured 0.62, at a junction with a stretch the render check
+/// straightened; sampled on the cubics, snapped to the grid); on the sample, every curve
+/// lies within 1.25 px of its ellipse (the border passes between inlier and background
+/// centres, as the true curve does).
 #[test]
-fn rotated_ellipse_arcs_match_the_true_ellipse() {
+fn rotated_ellipse_curves_match_the_true_ellipse() {
     let (cx, cy, a, b, theta) = (20.3, 18.6, 9.0, 5.0, 30f64.to_radians());
     let (s, c) = theta.sin_cos();
     let mask = Mask::from_fn(42, 38, |x, y| {
@@ -181,28 +172,11 @@ fn rotated_ellipse_arcs_match_the_true_ellipse() {
         (u / a).powi(2) + (v / b).powi(2) <= 1.0
     });
     let d = decomposition(&mask, Model::Conic);
-    let (arcs, _) = arcs_around(&d, Point::new(cx, cy), a);
-    assert!(!arcs.is_empty());
-    for arc in &arcs {
-        let (major, minor, angle) = if arc.radii.x >= arc.radii.y {
-            (arc.radii.x, arc.radii.y, arc.x_rotation)
-        } else {
-            (
-                arc.radii.y,
-                arc.radii.x,
-                arc.x_rotation + std::f64::consts::FRAC_PI_2,
-            )
-        };
-        let mut dtheta = (angle - theta).rem_euclid(std::f64::consts::PI);
-        dtheta = dtheta.min(std::f64::consts::PI - dtheta);
-        assert!(
-            (major - a).abs() <= 0.5
-                && (minor - b).abs() <= 0.5
-                && dtheta <= 3f64.to_radians()
-                && (arc.center - Point::new(cx, cy)).hypot() <= 0.5,
-            "arc centre {:?} axes {major} {minor} angle {angle}",
-            arc.center
-        );
+    let (points, _) = curve_points_around(&d, Point::new(cx, cy), a);
+    assert!(!points.is_empty());
+    for p in &points {
+        let e = ellipse_distance(*p, Point::new(cx, cy), a, b, theta);
+        assert!(e <= 0.7, "curve point {p:?} is {e} px off");
     }
 
     let mask = load("syn_ellipses_rotated.png");
@@ -216,27 +190,17 @@ fn rotated_ellipse_arcs_match_the_true_ellipse() {
             op["cx"].as_f64().expect("cx"),
             op["cy"].as_f64().expect("cy"),
         );
-        let (arcs, _) = arcs_around(&d, centre, a);
-        for arc in &arcs {
-            for k in 0..=4 {
-                let t = arc.start_angle + arc.sweep_angle * f64::from(k) / 4.0;
-                let (st, ct) = t.sin_cos();
-                let (sr, cr) = arc.x_rotation.sin_cos();
-                let (u, v) = (arc.radii.x * ct, arc.radii.y * st);
-                let p = Point::new(
-                    arc.center.x + u * cr - v * sr,
-                    arc.center.y + u * sr + v * cr,
-                );
-                let e = ellipse_distance(p, centre, a, b, theta);
-                assert!(
-                    e <= 1.25,
-                    "ellipse a={a} b={b}: arc point {p:?} is {e} px off"
-                );
-            }
-            checked += 1;
+        let (points, _) = curve_points_around(&d, centre, a);
+        for p in &points {
+            let e = ellipse_distance(*p, centre, a, b, theta);
+            assert!(
+                e <= 1.25,
+                "ellipse a={a} b={b}: curve point {p:?} is {e} px off"
+            );
         }
+        checked += points.len() / 9;
     }
-    assert!(checked >= 10, "only {checked} elliptic arcs checked");
+    assert!(checked >= 6, "only {checked} curves checked");
 }
 
 #[test]
@@ -255,7 +219,7 @@ fn svg_parses_and_is_well_formed() {
         assert_eq!(out.svg.matches("<path").count(), 1);
         assert_eq!(out.commands.move_to, 3);
         assert_eq!(out.commands.close, 3);
-        // Compact numbers: no trailing zeros, at most 3 decimals.
+        // Exact numbers on the default 1/16 px grid: no trailing zeros, at most 4 decimals.
         let d = out
             .svg
             .split(" d=\"")
@@ -270,7 +234,8 @@ fn svg_parses_and_is_well_formed() {
         {
             assert!(num.parse::<f64>().is_ok(), "{num}");
             if let Some((_, frac)) = num.split_once('.') {
-                assert!(frac.len() <= 3 && !frac.ends_with('0'), "{num}");
+                assert!(frac.len() <= 4 && !frac.ends_with('0'), "{num}");
+                assert_eq!((num.parse::<f64>().unwrap() * 16.0).fract(), 0.0, "{num}");
             }
         }
     }
@@ -298,72 +263,74 @@ fn crack_outlines_are_exact() {
 }
 
 /// Largest number of differing pixels (in resvg) and of staircase runs measured for each
-/// sample and model.
+/// sample and model. Every contour is checked in tiny-skia while it is drawn, so no pixel
+/// differs; the staircases left are the one-pixel features of the inputs (the tiny blobs,
+/// the big image's small shapes, jagged coasts).
 const BOUNDS: &[(&str, Model, u64, u64)] = &[
-    ("digits_liberationsans_cap40", Model::Line, 3, 14),
-    ("digits_liberationsans_cap40", Model::Circle, 124, 22),
-    ("digits_liberationsans_cap40", Model::Conic, 94, 13),
-    ("digits_liberationsans_cap40", Model::Poly(3), 221, 22),
+    ("digits_liberationsans_cap40", Model::Line, 0, 1),
+    ("digits_liberationsans_cap40", Model::Circle, 0, 1),
+    ("digits_liberationsans_cap40", Model::Conic, 0, 1),
+    ("digits_liberationsans_cap40", Model::Poly(3), 0, 1),
     ("glyph_S_dejavusans_cap120", Model::Line, 0, 0),
-    ("glyph_S_dejavusans_cap120", Model::Circle, 70, 1),
-    ("glyph_S_dejavusans_cap120", Model::Conic, 58, 0),
-    ("glyph_S_dejavusans_cap120", Model::Poly(3), 34, 2),
-    ("glyph_at_dejavusans_cap40", Model::Line, 0, 6),
-    ("glyph_at_dejavusans_cap40", Model::Circle, 41, 1),
-    ("glyph_at_dejavusans_cap40", Model::Conic, 43, 2),
-    ("glyph_at_dejavusans_cap40", Model::Poly(3), 29, 3),
-    ("glyph_g_liberationserif_cap120", Model::Line, 1, 5),
-    ("glyph_g_liberationserif_cap120", Model::Circle, 73, 6),
-    ("glyph_g_liberationserif_cap120", Model::Conic, 44, 4),
-    ("glyph_g_liberationserif_cap120", Model::Poly(3), 25, 8),
-    ("lineart_cat_symbola_h300", Model::Line, 4, 38),
-    ("lineart_cat_symbola_h300", Model::Circle, 328, 26),
-    ("lineart_cat_symbola_h300", Model::Conic, 214, 25),
-    ("lineart_cat_symbola_h300", Model::Poly(3), 118, 42),
-    ("sil_horse_skimage", Model::Line, 2, 9),
-    ("sil_horse_skimage", Model::Circle, 141, 14),
-    ("sil_horse_skimage", Model::Conic, 84, 8),
-    ("sil_horse_skimage", Model::Poly(3), 32, 19),
-    ("suits_black_dejavusans_cap120", Model::Line, 0, 12),
-    ("suits_black_dejavusans_cap120", Model::Circle, 120, 12),
-    ("suits_black_dejavusans_cap120", Model::Conic, 89, 6),
-    ("suits_black_dejavusans_cap120", Model::Poly(3), 41, 15),
-    ("syn_big3000_many_shapes", Model::Line, 15, 482),
-    ("syn_big3000_many_shapes", Model::Circle, 3954, 333),
-    ("syn_big3000_many_shapes", Model::Conic, 3619, 325),
-    ("syn_big3000_many_shapes", Model::Poly(3), 2324, 518),
-    ("syn_border_touching", Model::Line, 0, 5),
-    ("syn_border_touching", Model::Circle, 43, 1),
-    ("syn_border_touching", Model::Conic, 59, 0),
-    ("syn_border_touching", Model::Poly(3), 24, 2),
-    ("syn_digital_circle_1px", Model::Line, 0, 8),
-    ("syn_digital_circle_1px", Model::Circle, 190, 0),
-    ("syn_digital_circle_1px", Model::Conic, 134, 0),
-    ("syn_digital_circle_1px", Model::Poly(3), 20, 8),
-    ("syn_discs_r3_to_r200", Model::Line, 3, 42),
-    ("syn_discs_r3_to_r200", Model::Circle, 438, 35),
-    ("syn_discs_r3_to_r200", Model::Conic, 352, 29),
-    ("syn_discs_r3_to_r200", Model::Poly(3), 166, 44),
-    ("syn_ellipses_rotated", Model::Line, 1, 14),
-    ("syn_ellipses_rotated", Model::Circle, 238, 21),
-    ("syn_ellipses_rotated", Model::Conic, 343, 5),
-    ("syn_ellipses_rotated", Model::Poly(3), 68, 19),
-    ("syn_fig15_ellipse_two_holes", Model::Line, 0, 4),
-    ("syn_fig15_ellipse_two_holes", Model::Circle, 112, 13),
-    ("syn_fig15_ellipse_two_holes", Model::Conic, 274, 5),
-    ("syn_fig15_ellipse_two_holes", Model::Poly(3), 23, 16),
-    ("syn_polygons_sharp", Model::Line, 4, 5),
-    ("syn_polygons_sharp", Model::Circle, 4, 5),
-    ("syn_polygons_sharp", Model::Conic, 0, 6),
-    ("syn_polygons_sharp", Model::Poly(3), 0, 6),
-    ("syn_tiny_blobs", Model::Line, 0, 9),
+    ("glyph_S_dejavusans_cap120", Model::Circle, 0, 1),
+    ("glyph_S_dejavusans_cap120", Model::Conic, 0, 0),
+    ("glyph_S_dejavusans_cap120", Model::Poly(3), 0, 0),
+    ("glyph_at_dejavusans_cap40", Model::Line, 0, 0),
+    ("glyph_at_dejavusans_cap40", Model::Circle, 0, 0),
+    ("glyph_at_dejavusans_cap40", Model::Conic, 0, 0),
+    ("glyph_at_dejavusans_cap40", Model::Poly(3), 0, 0),
+    ("glyph_g_liberationserif_cap120", Model::Line, 0, 0),
+    ("glyph_g_liberationserif_cap120", Model::Circle, 0, 0),
+    ("glyph_g_liberationserif_cap120", Model::Conic, 0, 0),
+    ("glyph_g_liberationserif_cap120", Model::Poly(3), 0, 0),
+    ("lineart_cat_symbola_h300", Model::Line, 0, 16),
+    ("lineart_cat_symbola_h300", Model::Circle, 0, 4),
+    ("lineart_cat_symbola_h300", Model::Conic, 0, 4),
+    ("lineart_cat_symbola_h300", Model::Poly(3), 0, 4),
+    ("sil_horse_skimage", Model::Line, 0, 3),
+    ("sil_horse_skimage", Model::Circle, 0, 0),
+    ("sil_horse_skimage", Model::Conic, 0, 2),
+    ("sil_horse_skimage", Model::Poly(3), 0, 3),
+    ("suits_black_dejavusans_cap120", Model::Line, 0, 1),
+    ("suits_black_dejavusans_cap120", Model::Circle, 0, 0),
+    ("suits_black_dejavusans_cap120", Model::Conic, 0, 0),
+    ("suits_black_dejavusans_cap120", Model::Poly(3), 0, 0),
+    ("syn_big3000_many_shapes", Model::Line, 0, 36),
+    ("syn_big3000_many_shapes", Model::Circle, 0, 39),
+    ("syn_big3000_many_shapes", Model::Conic, 0, 46),
+    ("syn_big3000_many_shapes", Model::Poly(3), 0, 53),
+    ("syn_border_touching", Model::Line, 0, 0),
+    ("syn_border_touching", Model::Circle, 0, 0),
+    ("syn_border_touching", Model::Conic, 0, 0),
+    ("syn_border_touching", Model::Poly(3), 0, 0),
+    ("syn_digital_circle_1px", Model::Line, 0, 0),
+    ("syn_digital_circle_1px", Model::Circle, 0, 0),
+    ("syn_digital_circle_1px", Model::Conic, 0, 0),
+    ("syn_digital_circle_1px", Model::Poly(3), 0, 0),
+    ("syn_discs_r3_to_r200", Model::Line, 0, 6),
+    ("syn_discs_r3_to_r200", Model::Circle, 0, 3),
+    ("syn_discs_r3_to_r200", Model::Conic, 0, 3),
+    ("syn_discs_r3_to_r200", Model::Poly(3), 0, 3),
+    ("syn_ellipses_rotated", Model::Line, 0, 0),
+    ("syn_ellipses_rotated", Model::Circle, 0, 0),
+    ("syn_ellipses_rotated", Model::Conic, 0, 0),
+    ("syn_ellipses_rotated", Model::Poly(3), 0, 0),
+    ("syn_fig15_ellipse_two_holes", Model::Line, 0, 0),
+    ("syn_fig15_ellipse_two_holes", Model::Circle, 0, 0),
+    ("syn_fig15_ellipse_two_holes", Model::Conic, 0, 0),
+    ("syn_fig15_ellipse_two_holes", Model::Poly(3), 0, 0),
+    ("syn_polygons_sharp", Model::Line, 0, 1),
+    ("syn_polygons_sharp", Model::Circle, 0, 1),
+    ("syn_polygons_sharp", Model::Conic, 0, 0),
+    ("syn_polygons_sharp", Model::Poly(3), 0, 0),
+    ("syn_tiny_blobs", Model::Line, 0, 8),
     ("syn_tiny_blobs", Model::Circle, 0, 8),
     ("syn_tiny_blobs", Model::Conic, 0, 9),
-    ("syn_tiny_blobs", Model::Poly(3), 0, 8),
-    ("word_Layers_dejavusans-bold_cap40", Model::Line, 1, 7),
-    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 43, 8),
-    ("word_Layers_dejavusans-bold_cap40", Model::Conic, 24, 2),
-    ("word_Layers_dejavusans-bold_cap40", Model::Poly(3), 26, 3),
+    ("syn_tiny_blobs", Model::Poly(3), 0, 9),
+    ("word_Layers_dejavusans-bold_cap40", Model::Line, 0, 0),
+    ("word_Layers_dejavusans-bold_cap40", Model::Circle, 0, 0),
+    ("word_Layers_dejavusans-bold_cap40", Model::Conic, 0, 0),
+    ("word_Layers_dejavusans-bold_cap40", Model::Poly(3), 0, 0),
 ];
 
 #[test]
@@ -400,10 +367,9 @@ fn sample_fidelity_does_not_regress() {
 
 /// A comb (a bar and 20-pixel teeth every 40 pixels) is rectilinear, so every model's pieces
 /// turn right-angled corners, where the separating curves pass within thousandths of a pixel
-/// of pixel centres. With the default minimum clearance those pieces are drawn along their
-/// pixel edges (merged into one `L` per straight run) and the round trip is exact; without
-/// it, 50 (line), 191 (circle) pixels differed at 400×400 and the conic model gave 2264
-/// before the largest-margin fix.
+/// of pixel centres. The renderer check turns what tiny-skia would draw wrongly into exact
+/// straight segments and the round trip is exact (50 (line), 191 (circle) pixels differed
+/// at 400×400 without a check).
 #[test]
 fn comb_is_exact_with_the_default_clearance() {
     let mut mask = Mask::new(400, 400);

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 const AFTER_HELP: &str = "\
 Examples:
   layertrace samples/glyph_g_liberationserif_cap120.png -o g.svg --report
-  layertrace logo.png -o logo.svg --model circle --fill '#1a237e' --precision 2
+  layertrace logo.png -o logo.svg --model circle --fill '#1a237e' --grid 3
   layertrace samples/glyph_g_liberationserif_cap120.png --json g.json --decomposition g.png
   cat scan.png | layertrace - --model circle --threshold otsu --json -
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
@@ -57,19 +57,21 @@ pub struct Args {
     #[arg(long, value_name = "COLOUR", default_value = "black", value_parser = parse_colour)]
     pub fill: String,
 
-    /// Decimals of the SVG coordinates (0 to 12).
-    #[arg(long, value_name = "N", default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=12))]
-    pub precision: u8,
+    /// SVG coordinates are multiples of 1/2^N pixel (0 to 6; 6 is the 1/64 px vertex grid of
+    /// tiny-skia and Skia), written exactly: N = 4 writes at most four decimals. Every
+    /// contour is checked in tiny-skia on that grid, so a coarser grid only costs commands.
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u8).range(0..=6))]
+    pub grid: u8,
 
     /// Largest distance (pixels, 0.001 to 10) of fitted cubic Béziers to the true curve
     /// (hyperbolas, degenerate conics, poly:D).
     #[arg(long, value_name = "PX", default_value_t = 0.05, value_parser = parse_tolerance)]
     pub tolerance: f64,
 
-    /// Draw a piece along its pixel edges when its curve passes closer than this (pixels,
-    /// 0 to 10, plus the coordinate rounding) to a pixel centre, which renderers working on
-    /// a 1/64 px grid could paint on either side; 0 keeps every curve (smaller SVG).
-    #[arg(long, value_name = "PX", default_value_t = 1.0 / 64.0, value_parser = parse_clearance)]
+    /// Draw a piece as its exact polygon (digital straight segments) when its curve passes
+    /// closer than this (pixels, 0 to 10) to a pixel centre: a safety margin for renderers
+    /// other than tiny-skia and Skia. 0 keeps every curve that the tiny-skia check accepts.
+    #[arg(long, value_name = "PX", default_value_t = 0.0, value_parser = parse_clearance)]
     pub min_clearance: f64,
 
     /// Write the pieces and their exact equations as JSON ('-' for standard output).

@@ -102,7 +102,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if svg_out.is_some() || args.report || diff_out.is_some() {
         let opts = SvgOptions {
             fill: args.fill.clone(),
-            precision: args.precision,
+            grid: args.grid,
             tolerance: args.tolerance,
             min_clearance: args.min_clearance,
         };

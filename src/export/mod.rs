@@ -3,4 +3,3 @@
 pub mod json;
 pub mod picture;
 pub mod svg;
-mod winding;

@@ -1,0 +1,231 @@
+//! One drawing of a contour: each stretch along its curve between junctions shared with its
+//! neighbours, or along its cracks.
+//!
+//! Consecutive stretches `k` and `k+1` (and the last with the first: contours are closed)
+//! meet near their adjacent end pixels `a = p_last(k)`, `b = p_first(k+1)`; let `m` be the
+//! middle of their centres.
+//! * Both have curves: the junction is their intersection closest to `m` within
+//!   [`JUNCTION_MAX_DISTANCE`] ([`intersect_near`]).
+//! * Otherwise (no intersection that close, e.g. nearly parallel lines, or a neighbour
+//!   along cracks): stretch `k` ends at the projection of `m` on its curve (or at its last
+//!   crack corner), stretch `k+1` starts at the projection of `m` on its own, and a straight
+//!   segment bridges the two.
+//! * A *cracked* junction draws pixels `a` and `b` along their cracks and each curve ends
+//!   at the projection of the nearer crack corner.
+//! * A contour of one stretch with a curve runs once round it, from and back to the
+//!   projection of `m`.
+//!
+//! A stretch whose curve does not come within [`JUNCTION_MAX_DISTANCE`] of a junction, that
+//! [`level_curve_path`] cannot draw, or that strays farther than [`STRAY_MARGIN`] from its
+//! pixels is drawn along its cracks in this drawing and reported, to be refined.
+
+use super::builder::Builder;
+use super::cracks::{centre, crack_polyline};
+use super::path::ContourPath;
+use super::stretch::{Drawing, Stretch};
+use crate::curve::{intersect_near, level_curve_path, project, PathCommand};
+use crate::pixel::Pixel;
+use kurbo::{BezPath, Point};
+use std::collections::HashMap;
+
+/// Largest distance (pixels) from the middle of two adjacent end pixels' centres to the
+/// junction of their pieces' curves, or to the projection used instead.
+pub const JUNCTION_MAX_DISTANCE: f64 = 1.5;
+
+/// A piece's curve between its junctions must stay within this distance (pixels) of the
+/// bounding box of the piece's pixels, or the piece falls back to its cracks: a level curve
+/// may run far from the pixels where no outlier holds it (e.g. round a huge circle when the
+/// whole contour is one piece).
+pub const STRAY_MARGIN: f64 = 2.0;
+
+/// A stretch's drawing between two end points: its commands and fitting error, or `None`
+/// when it cannot be drawn.
+type Drawn = Option<(Vec<PathCommand>, f64)>;
+
+/// What one drawing computes that the next can reuse: the intersection at each junction
+/// (it depends only on the two curves and `m`) and each stretch's path between given end
+/// points, keyed by stretch ids.
+#[derive(Default)]
+pub(crate) struct Memo {
+    intersections: HashMap<(usize, usize), Option<Point>>,
+    paths: HashMap<(usize, [u64; 4]), Drawn>,
+}
+
+/// A drawing and the stretches that could not be drawn along their curve in it.
+pub(crate) struct Built {
+    /// The path.
+    pub path: ContourPath,
+    /// Per command of the path: a segment of a polygon that may be smoothed.
+    pub smooth: Vec<bool>,
+    /// Indices of stretches with a curve drawn along their cracks instead.
+    pub failed: Vec<usize>,
+}
+
+/// True when the path from `from` along `cmds` stays within [`STRAY_MARGIN`] of the
+/// bounding box of the pixels (squares) of its piece.
+fn stays_near(from: Point, cmds: &[PathCommand], pixels: &[Pixel]) -> bool {
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    for p in pixels {
+        let (x, y) = (f64::from(p.x), f64::from(p.y));
+        x0 = x0.min(x);
+        y0 = y0.min(y);
+        x1 = x1.max(x + 1.0);
+        y1 = y1.max(y + 1.0);
+    }
+    let allowed = kurbo::Rect::new(x0, y0, x1, y1).inflate(STRAY_MARGIN, STRAY_MARGIN);
+    let mut path = BezPath::new();
+    path.move_to(from);
+    let mut pen = from;
+    for c in cmds {
+        for el in c.to_path_els(pen) {
+            path.push(el);
+        }
+        pen = c.end();
+    }
+    let b = kurbo::Shape::bounding_box(&path);
+    b.x0 >= allowed.x0 && b.y0 >= allowed.y0 && b.x1 <= allowed.x1 && b.y1 <= allowed.y1
+}
+
+/// One drawing of a contour's `stretches` on the grid of `2^-grid` px; `cracked[j]` draws
+/// the end pixel of stretch `j` and the start pixel of the next one along their cracks.
+pub(crate) fn build(
+    points: &[Pixel],
+    stretches: &[Stretch],
+    cracked: &[bool],
+    memo: &mut Memo,
+    grid: u8,
+    smooth: bool,
+) -> Built {
+    let mut out = ContourPath::default();
+    let mut b = Builder::new(grid);
+    let m = stretches.len();
+    let mut use_curve: Vec<bool> = stretches.iter().map(|s| s.poly.is_some()).collect();
+    let mut failed = Vec::new();
+    let pixel_cracks = |i: usize| crack_polyline(points, i, i);
+    // A stretch whose both end pixels are cracked and that has no more than one pixel
+    // between them is drawn along its cracks.
+    for k in 0..m {
+        if use_curve[k] && cracked[(k + m - 1) % m] && cracked[k] && stretches[k].len() <= 3 {
+            use_curve[k] = false;
+        }
+    }
+    let cracks = |k: usize| crack_polyline(points, stretches[k].first, stretches[k].last);
+    // Junction j joins stretch j (its end) and stretch (j + 1) % m (its start).
+    let mut ends = vec![Point::ZERO; m];
+    let mut starts = vec![Point::ZERO; m];
+    loop {
+        out.joins = Default::default();
+        let mut lost = Vec::new();
+        for j in 0..m {
+            let k = (j + 1) % m;
+            let (sj, sk) = (&stretches[j], &stretches[k]);
+            let (a, bi) = (sj.last, sk.first);
+            let mid = centre(points[a]).midpoint(centre(points[bi]));
+            let (end_target, start_target) = if cracked[j] {
+                out.joins.cracked += 1;
+                let ca = pixel_cracks(a);
+                let cb = pixel_cracks(bi);
+                (
+                    ca.first().copied().unwrap_or(mid),
+                    cb.last().copied().unwrap_or(mid),
+                )
+            } else {
+                if let (true, true, Some(pa), Some(pb)) =
+                    (use_curve[j], use_curve[k], &sj.poly, &sk.poly)
+                {
+                    if j != k {
+                        let x = *memo
+                            .intersections
+                            .entry((sj.id, sk.id))
+                            .or_insert_with(|| intersect_near(pa, pb, mid, JUNCTION_MAX_DISTANCE));
+                        if let Some(x) = x {
+                            ends[j] = x;
+                            starts[k] = x;
+                            out.joins.intersection += 1;
+                            continue;
+                        }
+                    }
+                }
+                out.joins.bridged += 1;
+                (mid, mid)
+            };
+            match (&sj.poly, use_curve[j]) {
+                (Some(pa), true) => match project(pa, end_target, JUNCTION_MAX_DISTANCE) {
+                    Some(x) => ends[j] = x,
+                    None => lost.push(j),
+                },
+                _ => ends[j] = cracks(j).last().copied().unwrap_or(mid),
+            }
+            match (&sk.poly, use_curve[k]) {
+                (Some(pb), true) => match project(pb, start_target, JUNCTION_MAX_DISTANCE) {
+                    Some(x) => starts[k] = x,
+                    None => lost.push(k),
+                },
+                _ => starts[k] = cracks(k).first().copied().unwrap_or(mid),
+            }
+        }
+        if lost.is_empty() {
+            break;
+        }
+        for j in lost {
+            if use_curve[j] {
+                use_curve[j] = false;
+                failed.push(j);
+            }
+        }
+    }
+    for (k, s) in stretches.iter().enumerate() {
+        // The segments of polygons (and the bridges into them) may become cubics.
+        b.smooth = smooth && s.drawing == Drawing::Straight;
+        let poly = match (&s.poly, use_curve[k]) {
+            (Some(p), true) => p,
+            _ => {
+                b.polyline(&cracks(k));
+                continue;
+            }
+        };
+        let head = cracked[(k + m - 1) % m];
+        let tail = cracked[k];
+        if head {
+            b.polyline(&pixel_cracks(s.first));
+        }
+        let (from, to) = (starts[k], ends[k]);
+        b.goto(from);
+        if !(m > 1 || head || tail) || (to - from).hypot() > 1e-9 {
+            let key = (s.id, [from.x, from.y, to.x, to.y].map(f64::to_bits));
+            let drawn = memo
+                .paths
+                .entry(key)
+                .or_insert_with(|| {
+                    let pixels = &points[s.first..=s.last];
+                    let guide: Vec<Point> = pixels.iter().map(|&p| centre(p)).collect();
+                    level_curve_path(poly, from, to, &guide, s.tolerance)
+                        .filter(|(cmds, _)| stays_near(from, cmds, pixels))
+                })
+                .clone();
+            match drawn {
+                Some((cmds, err)) => {
+                    out.max_fit_error = out.max_fit_error.max(err);
+                    b.extend(&cmds);
+                }
+                None => {
+                    failed.push(k);
+                    b.polyline(&cracks(k));
+                }
+            }
+        }
+        if tail {
+            b.polyline(&pixel_cracks(s.last));
+        }
+    }
+    let (start, commands, tags) = b.into_tagged();
+    out.start = start.unwrap_or_default();
+    out.commands = commands;
+    failed.sort_unstable();
+    failed.dedup();
+    Built {
+        path: out,
+        smooth: tags,
+        failed,
+    }
+}

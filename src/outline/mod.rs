@@ -1,0 +1,259 @@
+//! Outline: the closed path of each contour, from the border curves of its pieces, exact as
+//! renderers draw it.
+//!
+//! # The border curve of a piece
+//! A piece with a non-zero certificate is drawn along its level curve (see
+//! [`crate::level::border_polynomial`]): its pixel centres on one side, the centres of the
+//! background pixels beside it on the other, so a renderer sampling pixel centres puts the
+//! piece's pixels inside and the background outside. The curve is drawn by
+//! [`crate::curve::level_curve_path`]: lines give `L`, parabolas exact `Q`, circles and
+//! ellipses exact arcs turned into cubics here (see [`builder`]), other curves cubics fitted
+//! within the tolerance. Consecutive pieces meet at the intersection of their curves, or
+//! are bridged (see [`joins`]).
+//!
+//! # Exact in the renderer
+//! Every point is written on a grid of `2^-grid` px (at most 1/64 px, the vertex grid of
+//! tiny-skia and Skia), and each contour's path is filled with tiny-skia itself
+//! ([`render_check`]): where a contour pixel or the background beside it lands on the wrong
+//! side — the renderer cuts curves into chords, rounds vertices — the pieces there are
+//! *refined* ([`stretch`]): a curve becomes its exact polygon of digital straight segments
+//! (one `L` each), a straight segment that still fails is halved, down to one or two pixels
+//! drawn along their cracks. Rounds repeat until the renderer draws every point right. So
+//! pixel staircases remain only where the input has one-pixel features, and curves remain
+//! wherever the renderer draws them right.
+//!
+//! # Orientation
+//! Outer borders run counter-clockwise on screen, hole borders clockwise (the foreground
+//! on the left); with the `nonzero` fill rule the foreground has winding ±1, holes 0.
+
+mod builder;
+mod cracks;
+mod joins;
+mod path;
+mod render_check;
+mod smooth;
+mod stretch;
+
+pub use joins::JUNCTION_MAX_DISTANCE;
+pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
+
+use crate::contour::Contour;
+use crate::decompose::Piece;
+use crate::model::Basis;
+use builder::Builder;
+use cracks::{crack_polyline, pieces_valid};
+use joins::{build, Memo};
+use render_check::{misplaced_points, Rendered};
+use smooth::smooth_polygon;
+use stretch::{Drawing, Stretch, Stretcher, Unused};
+
+/// Finest grid: tiny-skia and Skia round vertices to 1/64 px.
+pub const MAX_GRID: u8 = 6;
+
+/// How [`contour_path`] draws.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OutlineOptions {
+    /// Largest distance (pixels) of fitted cubics to their curve; at least 0.001.
+    pub tolerance: f64,
+    /// Pieces whose curve passes closer than this (pixels) to a pixel centre are drawn as
+    /// their polygon without trying the curve (0: let the renderer check decide).
+    pub min_clearance: f64,
+    /// Points are multiples of `2^-grid` px; at most [`MAX_GRID`].
+    pub grid: u8,
+}
+
+impl Default for OutlineOptions {
+    fn default() -> OutlineOptions {
+        OutlineOptions {
+            tolerance: 0.05,
+            min_clearance: 0.0,
+            grid: 4,
+        }
+    }
+}
+
+/// Most rounds of drawing, render check and refinement per contour. Refinement halves the
+/// stretches that fail, so a stretch of `L` points reaches one or two points after about
+/// `log2 L` rounds.
+const MAX_ROUNDS: usize = 40;
+
+/// The whole contour along its cracks.
+fn cracks_path(points: &[crate::pixel::Pixel]) -> ContourPath {
+    let mut b = Builder::new(0);
+    b.polyline(&crack_polyline(points, 0, points.len().saturating_sub(1)));
+    let (start, commands) = b.into_commands();
+    ContourPath {
+        start: start.unwrap_or_default(),
+        commands,
+        ..ContourPath::default()
+    }
+}
+
+/// The closed path of one contour decomposed into `pieces` described in `basis`, exact in
+/// tiny-skia (see the module documentation).
+pub fn contour_path(
+    contour: &Contour,
+    pieces: &[Piece],
+    basis: &dyn Basis,
+    opts: &OutlineOptions,
+) -> ContourPath {
+    let points = &contour.points;
+    let n = points.len();
+    if n <= 1 || !pieces_valid(n, pieces) {
+        let mut out = cracks_path(points);
+        if n > 1 {
+            out.fallbacks.invalid_pieces += 1;
+        }
+        return out;
+    }
+    let tolerance = if opts.tolerance.is_finite() && opts.tolerance > 0.0 {
+        opts.tolerance.max(1e-3)
+    } else {
+        OutlineOptions::default().tolerance
+    };
+    let grid = opts.grid.min(MAX_GRID);
+    // Polygons that replace curves may become renderer-safe cubics; the line model's stay
+    // straight.
+    let smooth = basis.dim() != crate::model::Model::Line.basis().dim();
+    let mut fallbacks = FallbackCounts::default();
+    let mut st = Stretcher::new(points, tolerance);
+    let mut stretches: Vec<Stretch> = Vec::with_capacity(pieces.len());
+    for p in pieces {
+        let (s, unused) = st.piece(basis, p, opts.min_clearance);
+        match unused {
+            None => stretches.push(s),
+            Some(reason) => {
+                match reason {
+                    Unused::Thin => fallbacks.thin += 1,
+                    Unused::NoPolynomial => fallbacks.no_polynomial += 1,
+                    Unused::ZeroCertificate => {}
+                }
+                stretches.extend(st.polygon(p.first, p.last));
+            }
+        }
+    }
+    let mut cracked = vec![false; stretches.len()];
+    let mut memo = Memo::default();
+    let mut reference: Option<Rendered> = None;
+    for _ in 0..MAX_ROUNDS {
+        let built = build(points, &stretches, &cracked, &mut memo, grid, smooth);
+        let m = stretches.len();
+        let mut refine = vec![false; m];
+        for &k in &built.failed {
+            if stretches[k].refinable() {
+                refine[k] = true;
+                fallbacks.curve += usize::from(stretches[k].drawing == Drawing::Curve);
+            }
+        }
+        let mut changed = refine.iter().any(|&r| r);
+        if !changed {
+            let path = built.path;
+            // Cracks alone are the pixel border itself.
+            if stretches.iter().all(|s| s.drawing == Drawing::Cracks) && built.failed.is_empty() {
+                return finish(path, &stretches, fallbacks);
+            }
+            let rendered = Rendered::new(path.start, &path.commands);
+            let reference = reference.get_or_insert_with(|| {
+                let c = cracks_path(points);
+                Rendered::new(c.start, &c.commands)
+            });
+            let bad = misplaced_points(points, reference, &rendered);
+            if bad.is_empty() {
+                let mut path = path;
+                if built.smooth.iter().any(|&t| t) {
+                    path.commands =
+                        smooth_polygon(path.start, &path.commands, &built.smooth, reference, grid);
+                }
+                return finish(path, &stretches, fallbacks);
+            }
+            let holding = |q: usize| {
+                stretches
+                    .partition_point(|s| s.last < q)
+                    .min(stretches.len() - 1)
+            };
+            for &i in &bad {
+                let mut near_refinable = false;
+                for q in [i + n - 1, i, i + 1] {
+                    let k = holding(q % n);
+                    if stretches[k].refinable() {
+                        near_refinable = true;
+                        if !refine[k] {
+                            refine[k] = true;
+                            changed = true;
+                            fallbacks.rendered +=
+                                usize::from(stretches[k].drawing == Drawing::Curve);
+                        }
+                    }
+                }
+                if near_refinable {
+                    continue;
+                }
+                // Only cracks and one- or two-point stretches around: draw the end pixels
+                // at the junctions within two points of `i` along their cracks.
+                let cyclic = |p: usize| {
+                    let d = p.abs_diff(i);
+                    d.min(n - d)
+                };
+                for back in 0..6 {
+                    let j = holding((i + n + 2 - back % n) % n);
+                    let near = cyclic(stretches[j].last).min(cyclic((stretches[j].last + 1) % n));
+                    if near <= 2 && !cracked[j] {
+                        cracked[j] = true;
+                        changed = true;
+                    }
+                }
+            }
+            if !changed {
+                // Nothing left to refine: the contour along its cracks is exact.
+                let mut out = cracks_path(points);
+                fallbacks.invalid_pieces += 1;
+                out.fallbacks = fallbacks;
+                return out;
+            }
+        }
+        if refine.iter().any(|&r| r) {
+            let mut next = Vec::with_capacity(m + 8);
+            let mut next_cracked = Vec::with_capacity(m + 8);
+            for (k, s) in stretches.iter().enumerate() {
+                match refine[k].then(|| st.refine(s)).flatten() {
+                    Some(parts) => {
+                        fallbacks.split += usize::from(s.drawing == Drawing::Straight);
+                        let last = parts.len() - 1;
+                        for (i, p) in parts.into_iter().enumerate() {
+                            next.push(p);
+                            next_cracked.push(i == last && cracked[k]);
+                        }
+                    }
+                    None => {
+                        next.push(s.clone());
+                        next_cracked.push(cracked[k]);
+                    }
+                }
+            }
+            stretches = next;
+            cracked = next_cracked;
+        }
+    }
+    // Did not converge (not seen): the contour along its cracks is exact.
+    let mut out = cracks_path(points);
+    fallbacks.invalid_pieces += 1;
+    out.fallbacks = fallbacks;
+    out
+}
+
+/// The path with its fallback counts (one- and two-point stretches counted at the end).
+fn finish(
+    mut path: ContourPath,
+    stretches: &[Stretch],
+    mut fallbacks: FallbackCounts,
+) -> ContourPath {
+    fallbacks.zero_certificate = stretches
+        .iter()
+        .filter(|s| s.drawing == Drawing::Cracks)
+        .count();
+    path.fallbacks = fallbacks;
+    path
+}
+
+#[cfg(test)]
+mod tests;

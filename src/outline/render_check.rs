@@ -1,0 +1,248 @@
+//! What tiny-skia draws of one contour's path, and the contour points it gets wrong.
+//!
+//! The path is filled with tiny-skia itself, without anti-aliasing (what resvg does under
+//! `shape-rendering="crispEdges"`), into a mask covering the path's bounding box. tiny-skia
+//! cuts quadratics and cubics into `2^k` chords by forward differencing in fixed point and
+//! rounds vertices to 1/64 px (see [`crate::fidelity`]); its results do not change under a
+//! translation by whole pixels (all of its arithmetic is on differences and on 26.6 fixed
+//! point), and the mask is large enough that no edge is clipped, so the pixels painted here
+//! are those resvg paints for this contour in the whole document. Points are on the 1/64
+//! grid ([`super::builder`]), exact in `f32`.
+
+use crate::curve::PathCommand;
+use crate::pixel::Pixel;
+use kurbo::Point;
+
+/// The pixels tiny-skia paints for one closed path (nonzero rule), within a window.
+pub(crate) struct Rendered {
+    x0: i64,
+    y0: i64,
+    width: i64,
+    height: i64,
+    mask: Option<tiny_skia::Mask>,
+}
+
+impl Rendered {
+    /// Fills the closed path `M start commands Z`.
+    pub(crate) fn new(start: Point, commands: &[PathCommand]) -> Rendered {
+        let (mut lo, mut hi) = (start, start);
+        let mut grow = |p: Point| {
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        };
+        for c in commands {
+            match *c {
+                PathCommand::Line(p) => grow(p),
+                PathCommand::Quad(a, p) => {
+                    grow(a);
+                    grow(p);
+                }
+                PathCommand::Cubic(a, b, p) => {
+                    grow(a);
+                    grow(b);
+                    grow(p);
+                }
+                PathCommand::Arc(a) => {
+                    // Not produced by the builder; bound the whole ellipse.
+                    let r = a.radii.x.abs().max(a.radii.y.abs());
+                    grow(a.to - kurbo::Vec2::new(r, r) * 2.0);
+                    grow(a.to + kurbo::Vec2::new(r, r) * 2.0);
+                }
+            }
+        }
+        // Two pixels of margin: the scan converter keeps clipping off only when the
+        // conservatively rounded bounds are inside the mask.
+        let x0 = lo.x.floor() as i64 - 2;
+        let y0 = lo.y.floor() as i64 - 2;
+        let width = hi.x.ceil() as i64 + 2 - x0;
+        let height = hi.y.ceil() as i64 + 2 - y0;
+        let mut out = Rendered {
+            x0,
+            y0,
+            width,
+            height,
+            mask: None,
+        };
+        let Some(path) = tiny_path(start, commands, x0 as f64, y0 as f64) else {
+            return out;
+        };
+        let (Ok(w), Ok(h)) = (u32::try_from(width), u32::try_from(height)) else {
+            return out;
+        };
+        let Some(mut mask) = tiny_skia::Mask::new(w, h) else {
+            return out;
+        };
+        mask.fill_path(
+            &path,
+            tiny_skia::FillRule::Winding,
+            false,
+            tiny_skia::Transform::identity(),
+        );
+        out.mask = Some(mask);
+        out
+    }
+
+    /// True when the pixel is painted.
+    pub(crate) fn painted(&self, p: Pixel) -> bool {
+        let (x, y) = (i64::from(p.x) - self.x0, i64::from(p.y) - self.y0);
+        if x < 0 || y < 0 || x >= self.width || y >= self.height {
+            return false;
+        }
+        match &self.mask {
+            Some(m) => m.data()[(y * self.width + x) as usize] != 0,
+            None => false,
+        }
+    }
+}
+
+/// The path translated by `(−dx, −dy)` (whole pixels: exact for grid points) as tiny-skia's.
+fn tiny_path(start: Point, commands: &[PathCommand], dx: f64, dy: f64) -> Option<tiny_skia::Path> {
+    let f = |p: Point| ((p.x - dx) as f32, (p.y - dy) as f32);
+    let mut pb = tiny_skia::PathBuilder::with_capacity(commands.len() + 2, commands.len() * 3 + 1);
+    let (x, y) = f(start);
+    pb.move_to(x, y);
+    let mut pen = start;
+    for c in commands {
+        match *c {
+            PathCommand::Line(p) => {
+                let (x, y) = f(p);
+                pb.line_to(x, y);
+            }
+            PathCommand::Quad(a, p) => {
+                let ((ax, ay), (x, y)) = (f(a), f(p));
+                pb.quad_to(ax, ay, x, y);
+            }
+            PathCommand::Cubic(a, b, p) => {
+                let ((ax, ay), (bx, by), (x, y)) = (f(a), f(b), f(p));
+                pb.cubic_to(ax, ay, bx, by, x, y);
+            }
+            PathCommand::Arc(_) => {
+                for el in c.to_path_els(pen) {
+                    match el {
+                        kurbo::PathEl::CurveTo(a, b, p) => {
+                            let ((ax, ay), (bx, by), (x, y)) = (f(a), f(b), f(p));
+                            pb.cubic_to(ax, ay, bx, by, x, y);
+                        }
+                        kurbo::PathEl::LineTo(p) => {
+                            let (x, y) = f(p);
+                            pb.line_to(x, y);
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+        pen = c.end();
+    }
+    pb.close();
+    pb.finish()
+}
+
+/// The pixels that `path` and `reference` paint differently.
+pub(crate) fn misplaced_pixels(reference: &Rendered, path: &Rendered) -> Vec<Pixel> {
+    let x0 = reference.x0.min(path.x0);
+    let y0 = reference.y0.min(path.y0);
+    let x1 = (reference.x0 + reference.width).max(path.x0 + path.width);
+    let y1 = (reference.y0 + reference.height).max(path.y0 + path.height);
+    let mut bad = Vec::new();
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) else {
+                continue;
+            };
+            let q = Pixel::new(px, py);
+            if reference.painted(q) != path.painted(q) {
+                bad.push(q);
+            }
+        }
+    }
+    bad
+}
+
+/// Indices of the contour points nearest to each pixel that `path` and `reference` paint
+/// differently (each index once, ascending). With the contour's crack polygon as the
+/// reference — exactly the pixels the contour encloses — a path that differs nowhere
+/// paints exactly those, so the nonzero sum of all contours' paths is the image: this
+/// catches a curve cutting a pixel of a neighbouring contour too, not only the contour's
+/// own pixels and the background beside them.
+pub(crate) fn misplaced_points(
+    points: &[Pixel],
+    reference: &Rendered,
+    path: &Rendered,
+) -> Vec<usize> {
+    let mut bad: Vec<usize> = misplaced_pixels(reference, path)
+        .into_iter()
+        .filter_map(|q| {
+            points
+                .iter()
+                .enumerate()
+                .min_by_key(|(_, p)| {
+                    let (dx, dy) = (i64::from(p.x - q.x), i64::from(p.y - q.y));
+                    dx * dx + dy * dy
+                })
+                .map(|(i, _)| i)
+        })
+        .collect();
+    bad.sort_unstable();
+    bad.dedup();
+    bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    /// Pixel centres strictly inside a polygon are painted, those outside are not (no centre
+    /// on an edge here).
+    #[test]
+    fn polygon_paints_the_centres_inside() {
+        let start = p(0.0, 0.0);
+        let cmds = [
+            PathCommand::Line(p(0.0, 5.0)),
+            PathCommand::Line(p(7.25, 5.0)),
+            PathCommand::Line(p(3.0, 0.0)),
+        ];
+        let r = Rendered::new(start, &cmds);
+        for y in -3..9 {
+            for x in -3..12 {
+                let c = p(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let inside = c.y > 0.0 && c.y < 5.0 && c.x > 0.0 && {
+                    // Right edge from (3, 0) to (7.25, 5).
+                    let t = c.y / 5.0;
+                    c.x < 3.0 + 4.25 * t
+                };
+                assert_eq!(r.painted(Pixel { x, y }), inside, "({x}, {y})");
+            }
+        }
+    }
+
+    /// A far-off translation does not change what is painted relative to the path.
+    #[test]
+    fn translation_invariant() {
+        let cmds = |d: f64| {
+            vec![
+                PathCommand::Cubic(p(d + 3.0, d + 9.0), p(d + 9.0, d + 11.0), p(d + 12.0, d)),
+                PathCommand::Line(p(d + 5.0, d - 1.5)),
+            ]
+        };
+        let a = Rendered::new(p(0.0, 0.0), &cmds(0.0));
+        let b = Rendered::new(p(4000.0, 4000.0), &cmds(4000.0));
+        let mut painted = 0;
+        for y in -3..15 {
+            for x in -3..15 {
+                let q = Pixel { x, y };
+                let q2 = Pixel {
+                    x: x + 4000,
+                    y: y + 4000,
+                };
+                assert_eq!(a.painted(q), b.painted(q2), "({x}, {y})");
+                painted += usize::from(a.painted(q));
+            }
+        }
+        assert!(painted > 30, "{painted}");
+    }
+}

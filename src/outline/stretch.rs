@@ -1,0 +1,316 @@
+//! Stretches: runs of consecutive contour points drawn one way — along a piece's border
+//! curve, along a digital straight segment, or along pixel cracks.
+//!
+//! A contour's path starts with one stretch per piece of its decomposition. Where the
+//! renderer check finds a pixel on the wrong side, the stretch there is *refined*: a curve
+//! piece becomes its exact polygon, the decomposition of its points into digital straight
+//! segments by the line model (the paper's greedy, each segment with its own certificate,
+//! drawn as one `L` along its largest-margin line), and a straight segment that still fails
+//! is halved. Halving ends at pieces of one or two points, which have no equation and are
+//! drawn along their cracks, exact by construction; so refinement always terminates, and
+//! stairs of cracks only remain where the input has one-pixel features.
+
+use crate::curve::Polynomial;
+use crate::decompose::{neighbour_sides, OutlierRule, Piece};
+use crate::level::{border_polynomial, polynomial_of};
+use crate::model::{Basis, Model};
+use crate::pixel::{Pixel, PixelSet};
+use crate::recognize::{max_margin_direction, Outcome, Recognizer, Side};
+use kurbo::Point;
+use std::sync::Arc;
+
+/// How a stretch is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Drawing {
+    /// Along the border curve of a piece of the decomposition.
+    Curve,
+    /// Along the border line of a digital straight segment (the exact polygon).
+    Straight,
+    /// Along its pixel cracks.
+    Cracks,
+}
+
+/// A run `first..=last` of a contour's points and how it is drawn.
+#[derive(Clone, Debug)]
+pub(crate) struct Stretch {
+    /// First point (index in the contour).
+    pub first: usize,
+    /// Last point (inclusive).
+    pub last: usize,
+    /// The border curve; `None` for [`Drawing::Cracks`].
+    pub poly: Option<Polynomial>,
+    /// Largest distance of fitted cubics to the curve.
+    pub tolerance: f64,
+    /// How it is drawn.
+    pub drawing: Drawing,
+    /// Unique within the contour: keys the memo of drawings.
+    pub id: usize,
+}
+
+impl Stretch {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.last + 1 - self.first
+    }
+
+    /// True when [`Stretcher::refine`] can straighten, split or crack it.
+    pub fn refinable(&self) -> bool {
+        self.drawing != Drawing::Cracks
+    }
+}
+
+/// Why a piece's curve was not used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Unused {
+    /// One or two points: the zero certificate.
+    ZeroCertificate,
+    /// No polynomial could be built.
+    NoPolynomial,
+    /// Its curve passes closer than the minimum clearance to a pixel centre.
+    Thin,
+}
+
+/// Makes stretches, numbering them.
+pub(crate) struct Stretcher<'a> {
+    points: &'a [Pixel],
+    line: Option<Recognizer>,
+    next_id: usize,
+    tolerance: f64,
+}
+
+impl<'a> Stretcher<'a> {
+    /// For the points of one contour; `tolerance` is the fitting tolerance asked for.
+    pub fn new(points: &'a [Pixel], tolerance: f64) -> Stretcher<'a> {
+        Stretcher {
+            points,
+            line: None,
+            next_id: 0,
+            tolerance,
+        }
+    }
+
+    fn id(&mut self) -> usize {
+        self.next_id += 1;
+        self.next_id
+    }
+
+    /// The stretch of a piece of the decomposition in `basis`, or why its curve is unused
+    /// (with the stretch to draw instead: cracks, to be refined when long enough).
+    pub fn piece(
+        &mut self,
+        basis: &dyn Basis,
+        piece: &Piece,
+        min_clearance: f64,
+    ) -> (Stretch, Option<Unused>) {
+        let id = self.id();
+        let mut s = Stretch {
+            first: piece.first,
+            last: piece.last,
+            poly: None,
+            tolerance: self.tolerance,
+            drawing: Drawing::Cracks,
+            id,
+        };
+        if piece.certificate.is_zero() {
+            return (s, Some(Unused::ZeroCertificate));
+        }
+        // A line keeps the background beside its end pixels on its far side too, where it
+        // can (as the polygon's segments do); curves keep the piece's own border curve,
+        // closer to the true shape (the render check decides where they are drawn).
+        let straight = basis.dim() == Model::Line.basis().dim();
+        let border = straight
+            .then(|| self.closed_border(basis, piece.first, piece.last, false))
+            .flatten()
+            .or_else(|| border_polynomial(basis, self.points, piece, OutlierRule::NotInPiece));
+        match border {
+            Some((_, clearance)) if clearance < min_clearance => (s, Some(Unused::Thin)),
+            Some((poly, clearance)) => {
+                s.poly = Some(poly);
+                s.drawing = if straight {
+                    Drawing::Straight
+                } else {
+                    Drawing::Curve
+                };
+                s.tolerance = self.fit_tolerance(clearance);
+                (s, None)
+            }
+            None => (s, Some(Unused::NoPolynomial)),
+        }
+    }
+
+    /// The exact polygon of `first..=last`: its digital straight segments, found greedily by
+    /// the line recognizer with the background beside *every* point of a segment as
+    /// outliers, its two end points included (the paper's pieces leave the ends free, which
+    /// lets a segment's line cut the background pixel beside its end), each drawn along its
+    /// largest-margin line. A single pixel always is such a segment, so every point is
+    /// covered.
+    pub fn polygon(&mut self, first: usize, last: usize) -> Vec<Stretch> {
+        if self.line.is_none() {
+            let basis: Arc<dyn Basis> = Arc::new(Model::Line.basis());
+            self.line = Recognizer::new(basis, &[0, 0]);
+        }
+        let Some(mut rec) = self.line.take() else {
+            return vec![self.cracks(first, last)];
+        };
+        let points = self.points;
+        let n = points.len();
+        let xy = |p: Pixel| [i64::from(p.x), i64::from(p.y)];
+        let basis = Model::Line.basis();
+        let mut out = Vec::new();
+        let mut i = first;
+        while i <= last {
+            rec.reset(&xy(points[i]));
+            let mut in_piece = PixelSet::default();
+            let mut upper = PixelSet::default();
+            let mut lower = PixelSet::default();
+            let mut j = i;
+            loop {
+                let p = points[j];
+                if lower.remove(&p) {
+                    rec.remove_outlier(&xy(p), Side::Lower);
+                }
+                rec.add_inlier(&xy(p));
+                in_piece.insert(p);
+                let (prev, next) = (points[(j + n - 1) % n], points[(j + 1) % n]);
+                if let Some(sides) = neighbour_sides(prev, p, next) {
+                    for (q, right, left) in sides {
+                        if in_piece.contains(&q) {
+                            continue;
+                        }
+                        if right && upper.insert(q) {
+                            rec.add_outlier(&xy(q), Side::Upper);
+                        }
+                        if left && !right && lower.insert(q) {
+                            rec.add_outlier(&xy(q), Side::Lower);
+                        }
+                    }
+                }
+                let ok = matches!(rec.recognize(), Outcome::Described);
+                if !ok && j > i {
+                    j -= 1;
+                    break;
+                }
+                if !ok || j == last {
+                    break;
+                }
+                j += 1;
+            }
+            out.push(self.segment(&basis, i, j));
+            i = j + 1;
+        }
+        self.line = Some(rec);
+        out
+    }
+
+    /// The stretch of the straight segment `first..=last` along the line of largest margin
+    /// between its points (with the foreground beside them) and the background beside
+    /// them; cracks when there is none.
+    fn segment(&mut self, basis: &dyn Basis, first: usize, last: usize) -> Stretch {
+        let id = self.id();
+        match self.closed_border(basis, first, last, false) {
+            Some((poly, clearance)) => Stretch {
+                first,
+                last,
+                poly: Some(poly),
+                tolerance: self.fit_tolerance(clearance),
+                drawing: Drawing::Straight,
+                id,
+            },
+            None => Stretch {
+                first,
+                last,
+                poly: None,
+                tolerance: self.tolerance,
+                drawing: Drawing::Cracks,
+                id,
+            },
+        }
+    }
+
+    /// Fitted cubics must not cross a pixel centre: they stay within half the clearance (at
+    /// least 1/1000 px) and never beyond the asked tolerance.
+    fn fit_tolerance(&self, clearance: f64) -> f64 {
+        (clearance / 2.0).clamp(1e-3, self.tolerance.max(1e-3))
+    }
+
+    /// The level curve in `basis` of largest margin between the points `first..=last` of the
+    /// closed contour with the foreground pixels beside them (LEFT) on one side, and the
+    /// background pixels beside *all* of them, the two ends included, on the other; with its
+    /// clearance (smallest first-order distance to those pixel centres). `scaled` as in
+    /// [`max_margin_direction`]. Returns `None` when no such curve is found.
+    fn closed_border(
+        &self,
+        basis: &dyn Basis,
+        first: usize,
+        last: usize,
+        scaled: bool,
+    ) -> Option<(Polynomial, f64)> {
+        let points = self.points;
+        let n = points.len();
+        let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
+        let inliers: PixelSet = points[first..=last].iter().copied().collect();
+        let (mut low, mut high): (Vec<[i64; 2]>, Vec<[i64; 2]>) = (Vec::new(), Vec::new());
+        let (mut seen_up, mut seen_low) = (PixelSet::default(), PixelSet::default());
+        for k in first..=last {
+            low.push(xy(&points[k]));
+            let (prev, next) = (points[(k + n - 1) % n], points[(k + 1) % n]);
+            if let Some(sides) = neighbour_sides(prev, points[k], next) {
+                for (q, right, left) in sides {
+                    if inliers.contains(&q) {
+                        continue;
+                    }
+                    if right && seen_up.insert(q) {
+                        high.push(xy(&q));
+                    }
+                    if left && !right && seen_low.insert(q) {
+                        low.push(xy(&q));
+                    }
+                }
+            }
+        }
+        let origin = xy(&points[first]);
+        let poly = max_margin_direction(basis, &origin, &low, &high, scaled)
+            .and_then(|(a, level)| polynomial_of(basis, &origin, &a, level))?;
+        let clearance = low
+            .iter()
+            .chain(&high)
+            .map(|p| poly.distance_estimate(Point::new(p[0] as f64 + 0.5, p[1] as f64 + 0.5)))
+            .fold(f64::INFINITY, f64::min);
+        Some((poly, clearance))
+    }
+
+    /// `first..=last` along its cracks.
+    pub fn cracks(&mut self, first: usize, last: usize) -> Stretch {
+        Stretch {
+            first,
+            last,
+            poly: None,
+            tolerance: self.tolerance,
+            drawing: Drawing::Cracks,
+            id: self.id(),
+        }
+    }
+
+    /// What replaces a stretch the renderer drew wrongly, or that could not be drawn: a
+    /// curve becomes its polygon; a straight segment (or a curve whose polygon is itself)
+    /// is halved, each half again a polygon; a one-point segment becomes its cracks.
+    /// Returns `None` for stretches that cannot be refined ([`Stretch::refinable`]).
+    pub fn refine(&mut self, s: &Stretch) -> Option<Vec<Stretch>> {
+        if !s.refinable() {
+            return None;
+        }
+        if s.drawing == Drawing::Curve {
+            let poly = self.polygon(s.first, s.last);
+            if poly.len() > 1 || poly[0].drawing != Drawing::Straight {
+                return Some(poly);
+            }
+        }
+        if s.len() == 1 {
+            return Some(vec![self.cracks(s.first, s.last)]);
+        }
+        let mid = s.first + s.len() / 2 - 1;
+        let mut out = self.polygon(s.first, mid);
+        out.extend(self.polygon(mid + 1, s.last));
+        Some(out)
+    }
+}

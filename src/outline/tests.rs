@@ -1,0 +1,183 @@
+//! Tests of [`contour_path`]: exact in tiny-skia, on the grid, no staircases where the input
+//! has none.
+
+use super::*;
+use crate::bitmap::Mask;
+use crate::contour::{trace, Convention};
+use crate::curve::PathCommand;
+use crate::decompose::{decompose, OutlierRule};
+use crate::model::Model;
+use proptest::prelude::*;
+
+/// True when `path` is made of horizontal and vertical lines between whole-pixel corners:
+/// no pixel centre can lie on it, and renderers draw it exactly.
+fn exact_by_construction(path: &ContourPath) -> bool {
+    let mut pen = path.start;
+    let whole = |p: kurbo::Point| p.x.fract() == 0.0 && p.y.fract() == 0.0;
+    whole(pen)
+        && path.commands.iter().all(|c| match *c {
+            PathCommand::Line(p) => {
+                let ok = whole(p) && (p.x == pen.x || p.y == pen.y);
+                pen = p;
+                ok
+            }
+            _ => false,
+        })
+}
+
+/// Misplaced points of every contour of `mask` drawn with `model` on `grid`, and the
+/// number of points off the grid.
+fn check(mask: &Mask, model: Model, grid: u8) -> (usize, usize) {
+    let d = decompose(
+        trace(mask, Convention::Default),
+        model,
+        OutlierRule::NotInPiece,
+    );
+    let basis = d.model.basis();
+    let opts = OutlineOptions {
+        grid,
+        ..OutlineOptions::default()
+    };
+    let scale = f64::from(1u32 << grid);
+    let off =
+        |p: kurbo::Point| usize::from((p.x * scale).fract() != 0.0 || (p.y * scale).fract() != 0.0);
+    let (mut bad, mut off_grid) = (0, 0);
+    for (c, pieces) in d.contours.iter().zip(&d.pieces) {
+        let cp = contour_path(c, pieces, &basis, &opts);
+        if cp.commands.is_empty() {
+            continue;
+        }
+        off_grid += off(cp.start);
+        for cmd in &cp.commands {
+            off_grid += match *cmd {
+                PathCommand::Line(p) => off(p),
+                PathCommand::Quad(a, p) => off(a) + off(p),
+                PathCommand::Cubic(a, b, p) => off(a) + off(b) + off(p),
+                PathCommand::Arc(_) => 1,
+            };
+        }
+        let reference = cracks_path(&c.points);
+        let reference = Rendered::new(reference.start, &reference.commands);
+        bad += misplaced_points(
+            &c.points,
+            &reference,
+            &Rendered::new(cp.start, &cp.commands),
+        )
+        .len();
+    }
+    (bad, off_grid)
+}
+
+#[test]
+fn single_pixel_is_its_square() {
+    let mask = Mask::from_ascii("...\n.#.\n...");
+    let d = decompose(
+        trace(&mask, Convention::Default),
+        Model::Line,
+        OutlierRule::NotInPiece,
+    );
+    let cp = contour_path(
+        &d.contours[0],
+        &d.pieces[0],
+        &d.model.basis(),
+        &OutlineOptions::default(),
+    );
+    assert_eq!(cp.start, kurbo::Point::new(2.0, 1.0));
+    assert_eq!(cp.commands.len(), 4);
+    assert!(exact_by_construction(&cp));
+}
+
+#[test]
+fn disc_is_exact() {
+    let mut rows = String::new();
+    for y in 0..40 {
+        for x in 0..40 {
+            let (dx, dy) = (f64::from(x) - 19.3, f64::from(y) - 20.1);
+            rows.push(if dx * dx + dy * dy < 15.2 * 15.2 {
+                '#'
+            } else {
+                '.'
+            });
+        }
+        rows.push('\n');
+    }
+    let mask = Mask::from_ascii(&rows);
+    for model in [Model::Circle, Model::Conic, Model::Line] {
+        for grid in [2, 4, 6] {
+            assert_eq!(check(&mask, model, grid), (0, 0), "{model} grid {grid}");
+        }
+    }
+    let d = decompose(
+        trace(&mask, Convention::Default),
+        Model::Circle,
+        OutlierRule::NotInPiece,
+    );
+    let cp = contour_path(
+        &d.contours[0],
+        &d.pieces[0],
+        &d.model.basis(),
+        &OutlineOptions::default(),
+    );
+    assert_eq!(cp.counts().arc, 0);
+}
+
+#[test]
+fn bad_pieces_fall_back_to_cracks() {
+    let mask = Mask::from_ascii("##\n##");
+    let mut d = decompose(
+        trace(&mask, Convention::Default),
+        Model::Line,
+        OutlierRule::NotInPiece,
+    );
+    let basis = d.model.basis();
+    for p in d.pieces[0].iter_mut() {
+        p.last += 7;
+    }
+    let cp = contour_path(
+        &d.contours[0],
+        &d.pieces[0],
+        &basis,
+        &OutlineOptions::default(),
+    );
+    assert_eq!(cp.fallbacks.invalid_pieces, 1);
+    assert!(exact_by_construction(&cp));
+    let empty = Contour {
+        points: Vec::new(),
+        hole: false,
+        closed: true,
+    };
+    assert!(
+        contour_path(&empty, &[], &basis, &OutlineOptions::default())
+            .commands
+            .is_empty()
+    );
+}
+
+fn small_mask() -> impl Strategy<Value = Mask> {
+    (
+        3u32..14,
+        3u32..14,
+        prop::collection::vec(any::<bool>(), 14 * 14),
+    )
+        .prop_map(|(w, h, bits)| {
+            let mut m = Mask::new(w, h);
+            for y in 0..h {
+                for x in 0..w {
+                    m.set(i64::from(x), i64::from(y), bits[(y * 14 + x) as usize]);
+                }
+            }
+            m
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    /// Every contour's path, filled by tiny-skia, paints its pixels and not the background
+    /// beside them, with every point on the grid, for every model.
+    #[test]
+    fn exact_in_tiny_skia(mask in small_mask(), grid in 0u8..=6) {
+        for model in [Model::Line, Model::Circle, Model::Conic] {
+            prop_assert_eq!(check(&mask, model, grid), (0, 0), "{}", model);
+        }
+    }
+}
