@@ -183,7 +183,7 @@ pub(super) fn parabola_path(
 mod tests {
     use super::*;
     use crate::curve::test_util::*;
-    use crate::curve::{level_curve_path, project, ConicKind, Polynomial};
+    use crate::curve::{level_curve_path, project, CurveKind, Polynomial};
     use kurbo::{Arc, ParamCurve, PathEl};
 
     #[test]
@@ -256,7 +256,7 @@ mod tests {
         )
         .unwrap();
         let k = poly.as_conic().unwrap();
-        assert_eq!(k.classify(), ConicKind::Ellipse);
+        assert_eq!(k.classify(), CurveKind::Ellipse);
         let (c, r, a) = k.ellipse_params().unwrap();
         for sweep in [1.0, -2.5, 5.0] {
             let from = project(&poly, ellipse_point(c, r.x, r.y, a, 0.3), 1e-3).unwrap();

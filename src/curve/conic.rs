@@ -1,7 +1,7 @@
 //! Conics `a x² + b xy + c y² + d x + e y + f = 0`: their kind and the parameters of
 //! ellipses, parabolas and hyperbolas.
 
-use super::kind::ConicKind;
+use super::kind::CurveKind;
 use kurbo::{Point, Vec2};
 use std::f64::consts::PI;
 
@@ -108,54 +108,54 @@ impl Conic {
     ///
     /// Tolerances (all relative, so that scaling the equation does not change the answer;
     /// integer coefficients of moderate size are classified exactly):
-    /// * no quadratic part (`a = b = c = 0` exactly): [`ConicKind::Line`] if `(d, e) ≠ 0`;
-    /// * `|b² − 4ac| ≤ 1e-10 (b² + 4|ac|)`: parabola-like; it is [`ConicKind::Parabola`] unless
+    /// * no quadratic part (`a = b = c = 0` exactly): [`CurveKind::Line`] if `(d, e) ≠ 0`;
+    /// * `|b² − 4ac| ≤ 1e-10 (b² + 4|ac|)`: parabola-like; it is [`CurveKind::Parabola`] unless
     ///   the linear part across the axis, `|(d, e)·t|` (`t` the unit axis direction), is at most
     ///   `1e-10 |(d, e)|` — then the 3×3 determinant vanishes: parallel or double lines, or empty;
     /// * otherwise the conic is central; translating to the centre leaves the constant
     ///   `f' = f + (d x0 + e y0)/2` (proportional to the 3×3 determinant), taken as zero when
     ///   `|f'| ≤ 1e-10 (|f| + (|d x0| + |e y0|)/2)`. Then `b² − 4ac > 0` gives
-    ///   [`ConicKind::Hyperbola`] (or two crossing lines if `f' = 0`), and `b² − 4ac < 0` gives
+    ///   [`CurveKind::Hyperbola`] (or two crossing lines if `f' = 0`), and `b² − 4ac < 0` gives
     ///   a real ellipse only when `f'` has the sign opposite to `a + c` (else the locus is empty
-    ///   or a single point). The ellipse is a [`ConicKind::Circle`] when
+    ///   or a single point). The ellipse is a [`CurveKind::Circle`] when
     ///   `|a − c|, |b| ≤ 1e-12 (|a| + |c|)`, in particular when `a == c` and `b == 0`.
-    pub fn classify(&self) -> ConicKind {
+    pub fn classify(&self) -> CurveKind {
         if !self.is_finite() {
-            return ConicKind::Degenerate;
+            return CurveKind::Degenerate;
         }
         let Conic { a, b, c, d, e, .. } = *self;
         if a == 0.0 && b == 0.0 && c == 0.0 {
             return if d != 0.0 || e != 0.0 {
-                ConicKind::Line
+                CurveKind::Line
             } else {
-                ConicKind::Degenerate
+                CurveKind::Degenerate
             };
         }
         let disc = b * b - 4.0 * a * c;
         if disc.abs() <= DISC_EPS * (b * b + 4.0 * (a * c).abs()) {
             return if self.parabola_frame().is_some() {
-                ConicKind::Parabola
+                CurveKind::Parabola
             } else {
-                ConicKind::Degenerate
+                CurveKind::Degenerate
             };
         }
         let Some((_, value, scale)) = self.centre() else {
-            return ConicKind::Degenerate;
+            return CurveKind::Degenerate;
         };
         if value.abs() <= CENTRE_EPS * scale {
-            return ConicKind::Degenerate;
+            return CurveKind::Degenerate;
         }
         if disc > 0.0 {
-            return ConicKind::Hyperbola;
+            return CurveKind::Hyperbola;
         }
         if value * (a + c) > 0.0 {
-            return ConicKind::Degenerate;
+            return CurveKind::Degenerate;
         }
         let s = a.abs() + c.abs();
         if (a - c).abs() <= CIRCLE_EPS * s && b.abs() <= CIRCLE_EPS * s {
-            ConicKind::Circle
+            CurveKind::Circle
         } else {
-            ConicKind::Ellipse
+            CurveKind::Ellipse
         }
     }
 
@@ -165,7 +165,7 @@ impl Conic {
     ///
     /// Returns `None` unless [`Conic::classify`] gives `Circle` or `Ellipse`.
     pub fn ellipse_params(&self) -> Option<(Point, Vec2, f64)> {
-        if !matches!(self.classify(), ConicKind::Circle | ConicKind::Ellipse) {
+        if !matches!(self.classify(), CurveKind::Circle | CurveKind::Ellipse) {
             return None;
         }
         let (centre, value, _) = self.centre()?;
@@ -204,7 +204,7 @@ impl Conic {
     ///
     /// Returns `None` unless [`Conic::classify`] gives `Parabola`.
     pub fn parabola_params(&self) -> Option<(Point, Vec2, f64)> {
-        if self.classify() != ConicKind::Parabola {
+        if self.classify() != CurveKind::Parabola {
             return None;
         }
         let (n, lambda, dd, ee) = self.parabola_frame()?;
@@ -224,7 +224,7 @@ impl Conic {
     ///
     /// Returns `None` unless [`Conic::classify`] gives `Hyperbola`.
     pub fn hyperbola_params(&self) -> Option<(Point, Vec2, f64)> {
-        if self.classify() != ConicKind::Hyperbola {
+        if self.classify() != CurveKind::Hyperbola {
             return None;
         }
         let (centre, value, _) = self.centre()?;
@@ -254,7 +254,7 @@ mod tests {
 
     #[test]
     fn classify_known_conics() {
-        use ConicKind::*;
+        use CurveKind::*;
         // (x − 3)² + (y + 2)² = 25, and scaled.
         let circle = Conic::new(1.0, 0.0, 1.0, -6.0, 4.0, -12.0);
         assert_eq!(circle.classify(), Circle);

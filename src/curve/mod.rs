@@ -14,10 +14,10 @@
 //! `[x, x+1] × [y, y+1]`. Distances are in pixels.
 //!
 //! One concept per file: [`Polynomial`] (`polynomial.rs`), [`Conic`] and its classification
-//! (`conic.rs`), [`ConicKind`] (`kind.rs`), [`PathCommand`] (`command.rs`), the solvers
-//! [`project`] and [`intersect_near`] (`solve.rs`), [`level_curve_path`] (`path.rs`) with its
-//! exact arcs (`arcs.rs`), its traces of the other curves (`trace.rs`) and their cubic fits
-//! (`fit.rs`).
+//! (`conic.rs`), [`CurveKind`], the kind of a conic or of a piece's level curve (`kind.rs`),
+//! [`PathCommand`] (`command.rs`), the solvers [`project`] and [`intersect_near`]
+//! (`solve.rs`), [`level_curve_path`] (`path.rs`) with its exact arcs (`arcs.rs`), its traces
+//! of the other curves (`trace.rs`) and their cubic fits (`fit.rs`).
 
 mod arcs;
 mod command;
@@ -33,7 +33,7 @@ mod trace;
 
 pub use command::{PathCommand, ARC_FLATTEN_TOLERANCE};
 pub use conic::Conic;
-pub use kind::ConicKind;
+pub use kind::CurveKind;
 pub use path::{level_curve_path, GUIDE_MAX_DISTANCE};
 pub use polynomial::{Polynomial, MAX_DEGREE};
 pub use solve::{intersect_near, project};

@@ -4,7 +4,7 @@
 use super::arcs::{ellipse_path, flat_arc, parabola_path};
 use super::command::PathCommand;
 use super::fit::fit_cubics;
-use super::kind::ConicKind;
+use super::kind::CurveKind;
 use super::polynomial::Polynomial;
 use super::trace::{hyperbola_trace, trace_curve};
 use kurbo::{Point, Vec2};
@@ -68,7 +68,7 @@ pub fn level_curve_path(
     }
     if let Some(conic) = poly.as_conic() {
         match conic.classify() {
-            ConicKind::Line => {
+            CurveKind::Line => {
                 let cmds = if from == to {
                     Vec::new()
                 } else {
@@ -76,7 +76,7 @@ pub fn level_curve_path(
                 };
                 return Some((cmds, 0.0));
             }
-            ConicKind::Circle | ConicKind::Ellipse => {
+            CurveKind::Circle | CurveKind::Ellipse => {
                 if let Some(sagitta) = flat_arc(&conic, from, to, guide, tolerance) {
                     let cmds = if from == to {
                         Vec::new()
@@ -87,8 +87,8 @@ pub fn level_curve_path(
                 }
                 return ellipse_path(&conic, from, to, guide).map(|c| (c, 0.0));
             }
-            ConicKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
-            ConicKind::Hyperbola => {
+            CurveKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
+            CurveKind::Hyperbola => {
                 let params = conic.hyperbola_params()?;
                 let (centre, _, angle) = params;
                 let axis = Vec2::from_angle(angle);
@@ -99,7 +99,8 @@ pub fn level_curve_path(
                     .or_else(|| trace_curve(poly, from, to, guide))?;
                 return fit_cubics(poly, &trace, tolerance);
             }
-            ConicKind::Degenerate => {}
+            // (`classify` never says `Algebraic`.)
+            CurveKind::Degenerate | CurveKind::Algebraic => {}
         }
     }
     let trace = trace_curve(poly, from, to, guide)?;

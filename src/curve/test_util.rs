@@ -3,7 +3,7 @@
 
 use super::command::PathCommand;
 use super::conic::Conic;
-use super::kind::ConicKind;
+use super::kind::CurveKind;
 use super::path::level_curve_path;
 use super::polynomial::Polynomial;
 use super::solve::project;
@@ -191,7 +191,7 @@ pub(super) fn rotated_hyperbola(
         1.0,
     )
     .unwrap();
-    assert_eq!(poly.as_conic().unwrap().classify(), ConicKind::Hyperbola);
+    assert_eq!(poly.as_conic().unwrap().classify(), CurveKind::Hyperbola);
     let at = move |sign: f64, t: f64| {
         let (x, y) = (sign * a * t.cosh(), b * t.sinh());
         centre + Vec2::new(c * x - s * y, s * x + c * y)

@@ -288,7 +288,7 @@ pub(super) fn trace_curve(
 mod tests {
     use super::*;
     use crate::curve::test_util::*;
-    use crate::curve::{level_curve_path, Conic, ConicKind};
+    use crate::curve::{level_curve_path, Conic, CurveKind};
     use std::f64::consts::TAU;
 
     #[test]
@@ -340,7 +340,7 @@ mod tests {
         // (x − y)(x + y) = 0 shifted to (30, 30); follow y = x through the crossing.
         let o = Point::new(30.0, 30.0);
         let poly = Polynomial::from_local(&[(2, 0), (0, 2)], &[1.0, -1.0], o, 0.0).unwrap();
-        assert_eq!(poly.as_conic().unwrap().classify(), ConicKind::Degenerate);
+        assert_eq!(poly.as_conic().unwrap().classify(), CurveKind::Degenerate);
         let from = o + Vec2::new(-5.0, -5.0);
         let to = o + Vec2::new(5.0, 5.0);
         let guide: Vec<Point> = (1..10)
