@@ -14,47 +14,12 @@
 //! centre beside it — which is what a rasterizer sampling pixel centres needs to reproduce
 //! the pixels along the piece.
 
-use crate::curve::{ConicKind, Polynomial, MAX_DEGREE};
+use crate::curve::{CurveKind, Polynomial, MAX_DEGREE};
 use crate::decompose::{piece_outliers, OutlierRule, Piece};
 use crate::model::Basis;
 use crate::pixel::Pixel;
 use crate::recognize::{max_margin_direction, Certificate};
 use kurbo::Point;
-
-/// The type of a piece's level curves.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum CurveKind {
-    /// A straight line.
-    Line,
-    /// A circle.
-    Circle,
-    /// An ellipse that is not a circle.
-    Ellipse,
-    /// A parabola.
-    Parabola,
-    /// A hyperbola.
-    Hyperbola,
-    /// A degenerate conic (line pair, point, empty) or the zero function.
-    Degenerate,
-    /// A curve of degree higher than 2.
-    Algebraic,
-}
-
-impl CurveKind {
-    /// The JSON name: `line`, `circle`, `ellipse`, `parabola`, `hyperbola`, `degenerate`,
-    /// `algebraic`.
-    pub fn name(self) -> &'static str {
-        match self {
-            CurveKind::Line => "line",
-            CurveKind::Circle => "circle",
-            CurveKind::Ellipse => "ellipse",
-            CurveKind::Parabola => "parabola",
-            CurveKind::Hyperbola => "hyperbola",
-            CurveKind::Degenerate => "degenerate",
-            CurveKind::Algebraic => "algebraic",
-        }
-    }
-}
 
 /// The level `c` of the border curve: the middle of the gap between the layer and its RIGHT
 /// outliers, `(upper + above) / 2`. Without RIGHT outliers, half the layer's width (at least
@@ -158,14 +123,8 @@ pub fn curve_kind(poly: Option<&Polynomial>) -> CurveKind {
     if poly.degree() > 2 {
         return CurveKind::Algebraic;
     }
-    match poly.as_conic().map(|c| c.classify()) {
-        Some(ConicKind::Line) => CurveKind::Line,
-        Some(ConicKind::Circle) => CurveKind::Circle,
-        Some(ConicKind::Ellipse) => CurveKind::Ellipse,
-        Some(ConicKind::Parabola) => CurveKind::Parabola,
-        Some(ConicKind::Hyperbola) => CurveKind::Hyperbola,
-        Some(ConicKind::Degenerate) | None => CurveKind::Degenerate,
-    }
+    poly.as_conic()
+        .map_or(CurveKind::Degenerate, |c| c.classify())
 }
 
 /// The kind of a piece's border curve (at [`boundary_level`]).

@@ -59,7 +59,7 @@ pub use bitmap::{
 };
 pub use contour::{trace, Contour, Convention};
 pub use curve::{
-    intersect_near, level_curve_path, project, Conic, ConicKind, PathCommand, Polynomial,
+    intersect_near, level_curve_path, project, Conic, CurveKind, PathCommand, Polynomial,
     ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
 };
 pub use decompose::{
@@ -80,7 +80,6 @@ pub use fidelity::{
 };
 pub use level::{
     border_polynomial, boundary_level, curve_kind, level_polynomial, piece_kind, polynomial_of,
-    CurveKind,
 };
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 pub use outline::{

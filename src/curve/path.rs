@@ -1,0 +1,226 @@
+//! [`level_curve_path`]: the part of a level curve between two points as SVG path commands,
+//! exact where the curve allows it, fitted cubics otherwise.
+
+use super::arcs::{ellipse_path, flat_arc, parabola_path};
+use super::command::PathCommand;
+use super::fit::fit_cubics;
+use super::kind::CurveKind;
+use super::polynomial::Polynomial;
+use super::trace::{hyperbola_trace, trace_curve};
+use kurbo::{Point, Vec2};
+
+/// Guide points farther than this (in pixels) from the curve make [`level_curve_path`] fail.
+pub const GUIDE_MAX_DISTANCE: f64 = 2.0;
+
+/// `from` and `to` farther than this (in pixels) from the curve make [`level_curve_path`] fail.
+pub(super) const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
+
+/// The part of the level curve `poly = 0` from `from` to `to`, as SVG path commands, with the
+/// measured maximal distance between the emitted path and the true curve (0 for the exact
+/// forms: lines, circular and elliptical arcs, parabola arcs).
+///
+/// `from` and `to` lie on the curve (within ~1e-6); `guide` are points near the curve (within
+/// [`GUIDE_MAX_DISTANCE`]), in path order, telling which part of the curve is meant: which way
+/// round a closed curve, which branch of a hyperbola. When `from == to` on a closed curve the
+/// whole curve is meant (for ellipses two arcs are emitted, of a third and two thirds of a turn; for traced curves the guide must
+/// go round).
+///
+/// * degree 1: one [`PathCommand::Line`];
+/// * circle / ellipse: one exact [`PathCommand::Arc`] whose direction is the one agreeing best
+///   with the guide (angular distance of the guide points outside the arc plus backward
+///   motion between consecutive points; ties go to the shorter arc);
+/// * parabola: one exact [`PathCommand::Quad`] whose control point is the intersection of the
+///   tangents at `from` and `to`;
+/// * hyperbola (same branch), degenerate conics and degree > 2: the curve is traced from
+///   `from` to `to` through the guide points' projections (predictor along the tangent,
+///   Newton corrector, step ≤ 0.25 px), then fitted by cubic Béziers tangent to the curve at
+///   their ends (tangent lengths by least squares, or a third of the arc length, whichever is
+///   closer), subdivided until the distance to the true curve, measured both ways at samples
+///   with Newton projections, is at most `tolerance`.
+///
+/// Returns `None` for non-finite input, a non-positive `tolerance`, a constant polynomial,
+/// `from`/`to` not on the curve (within 0.01), a guide point whose projection fails or (for
+/// parabolas) lies farther than [`GUIDE_MAX_DISTANCE`] from the arc, points on different
+/// hyperbola branches, a trace that does not reach `to`, or a trace step that no cubic
+/// follows within `tolerance` (it jumps the gap between two branches by a saddle).
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(d <= max)` also rejects NaN distances.
+pub fn level_curve_path(
+    poly: &Polynomial,
+    from: Point,
+    to: Point,
+    guide: &[Point],
+    tolerance: f64,
+) -> Option<(Vec<PathCommand>, f64)> {
+    if !from.is_finite()
+        || !to.is_finite()
+        || guide.iter().any(|g| !g.is_finite())
+        || tolerance <= 0.0
+        || !tolerance.is_finite()
+        || !poly.is_finite()
+    {
+        return None;
+    }
+    if poly.degree() == 0
+        || !(poly.distance_estimate(from) <= ENDPOINT_MAX_DISTANCE)
+        || !(poly.distance_estimate(to) <= ENDPOINT_MAX_DISTANCE)
+    {
+        return None;
+    }
+    if let Some(conic) = poly.as_conic() {
+        match conic.classify() {
+            CurveKind::Line => {
+                let cmds = if from == to {
+                    Vec::new()
+                } else {
+                    vec![PathCommand::Line(to)]
+                };
+                return Some((cmds, 0.0));
+            }
+            CurveKind::Circle | CurveKind::Ellipse => {
+                if let Some(sagitta) = flat_arc(&conic, from, to, guide, tolerance) {
+                    let cmds = if from == to {
+                        Vec::new()
+                    } else {
+                        vec![PathCommand::Line(to)]
+                    };
+                    return Some((cmds, sagitta));
+                }
+                return ellipse_path(&conic, from, to, guide).map(|c| (c, 0.0));
+            }
+            CurveKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
+            CurveKind::Hyperbola => {
+                let params = conic.hyperbola_params()?;
+                let (centre, _, angle) = params;
+                let axis = Vec2::from_angle(angle);
+                if (from - centre).dot(axis) * (to - centre).dot(axis) < 0.0 {
+                    return None; // different branches
+                }
+                let trace = hyperbola_trace(poly, params, from, to, guide)
+                    .or_else(|| trace_curve(poly, from, to, guide))?;
+                return fit_cubics(poly, &trace, tolerance);
+            }
+            // (`classify` never says `Algebraic`.)
+            CurveKind::Degenerate | CurveKind::Algebraic => {}
+        }
+    }
+    let trace = trace_curve(poly, from, to, guide)?;
+    fit_cubics(poly, &trace, tolerance)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::test_util::*;
+    use crate::curve::{intersect_near, project, Conic};
+
+    #[test]
+    fn random_inputs_do_not_panic() {
+        let mut rng = Rng(0xdead_beef_0bad_f00d);
+        let start = std::time::Instant::now();
+        let mut found = 0;
+        for case in 0..300 {
+            let n = 1 + (rng.next() * 10.0) as usize;
+            let monomials = random_monomials(&mut rng, n);
+            let coefficients: Vec<f64> = (0..n).map(|_| rng.range(-10.0, 10.0).round()).collect();
+            let origin = Point::new(
+                rng.range(0.0, 50.0).floor() + 0.5,
+                rng.range(0.0, 50.0).floor() + 0.5,
+            );
+            let poly =
+                Polynomial::from_local(&monomials, &coefficients, origin, rng.range(-5.0, 5.0))
+                    .unwrap();
+            let q = Polynomial::from_local(
+                &[(1, 0), (0, 1)],
+                &[rng.range(-1.0, 1.0), 1.0],
+                origin,
+                0.0,
+            )
+            .unwrap();
+            let near = origin + Vec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+            let _ = intersect_near(&poly, &q, near, 2.0);
+            let (Some(from), Some(to)) = (
+                project(&poly, near, 3.0),
+                project(
+                    &poly,
+                    near + Vec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)),
+                    3.0,
+                ),
+            ) else {
+                continue;
+            };
+            let guide: Vec<Point> = (1..5).map(|i| from.lerp(to, i as f64 / 5.0)).collect();
+            let guide = if case % 2 == 0 { guide } else { Vec::new() };
+            if let Some((cmds, err)) = level_curve_path(&poly, from, to, &guide, 0.05) {
+                found += 1;
+                assert!(err.is_finite(), "{err}");
+                if let Some(last) = cmds.last() {
+                    assert_point_close(last.end(), to, 0.0, "random path end");
+                }
+            }
+        }
+        let huge = Point::new(1e300, -1e300);
+        let line = Polynomial::new(&[(1, 0, 1.0), (0, 0, -1.0)]).unwrap();
+        assert!(level_curve_path(&line, huge, huge, &[], 0.05).is_none());
+        let _ = project(&line, huge, 1.0);
+        let _ = intersect_near(&line, &line, huge, 1.0);
+        eprintln!("random inputs: {found} paths found, {:?}", start.elapsed());
+    }
+
+    #[test]
+    fn lines_and_bad_input() {
+        let line = Polynomial::new(&[(1, 0, 1.0), (0, 1, 1.0), (0, 0, -10.0)]).unwrap();
+        let (cmds, err) = level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[],
+            0.05,
+        )
+        .unwrap();
+        assert_eq!(cmds, vec![PathCommand::Line(Point::new(10.0, 0.0))]);
+        assert_eq!(err, 0.0);
+        let nan = Point::new(f64::NAN, 0.0);
+        assert!(level_curve_path(&line, nan, Point::new(10.0, 0.0), &[], 0.05).is_none());
+        assert!(level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[nan],
+            0.05
+        )
+        .is_none());
+        assert!(level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[],
+            0.0
+        )
+        .is_none());
+        assert!(level_curve_path(
+            &line,
+            Point::new(0.0, 10.0),
+            Point::new(10.0, 0.0),
+            &[],
+            f64::NAN
+        )
+        .is_none());
+        // Endpoints off the curve.
+        let off = Point::new(0.0, 10.5);
+        assert!(level_curve_path(&line, off, Point::new(10.0, 0.0), &[], 0.05).is_none());
+        let circle = Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, -25.0));
+        assert!(level_curve_path(
+            &circle,
+            Point::new(3.0, 4.1),
+            Point::new(5.0, 0.0),
+            &[],
+            0.05
+        )
+        .is_none());
+        let constant = Polynomial::new(&[(0, 0, 1.0)]).unwrap();
+        assert!(level_curve_path(&constant, Point::ZERO, Point::ZERO, &[], 0.05).is_none());
+        assert!(project(&line, nan, 1.0).is_none());
+        assert!(intersect_near(&line, &line, nan, 1.0).is_none());
+        assert!(intersect_near(&line, &line, Point::ZERO, f64::INFINITY).is_none());
+    }
+}

@@ -1,0 +1,310 @@
+//! Numerical solvers on a curve `f = 0`: Newton steps onto it, the distance to it, the
+//! projection of a point, the intersection of two curves.
+
+use super::polynomial::Polynomial;
+use kurbo::{Point, Vec2};
+use std::f64::consts::PI;
+
+/// Newton iteration along the gradient towards `f = 0`, starting at `p`.
+///
+/// Returns `None` if it leaves the disc of radius `max_distance` around `p`, meets a vanishing
+/// gradient off the curve, or does not converge.
+pub(super) fn newton_to_curve(poly: &Polynomial, p: Point, max_distance: f64) -> Option<Point> {
+    let mut q = p;
+    for _ in 0..64 {
+        let (v, g) = poly.value_and_gradient(q);
+        if v == 0.0 {
+            return Some(q);
+        }
+        let g2 = g.hypot2();
+        if g2 <= 0.0 || !g2.is_finite() || !v.is_finite() {
+            return None;
+        }
+        let step = g * (v / g2);
+        q -= step;
+        if (q - p).hypot() > max_distance {
+            return None;
+        }
+        if step.hypot() <= 1e-13 * (1.0 + q.to_vec2().hypot()) {
+            return Some(q);
+        }
+    }
+    (poly.distance_estimate(q) <= 1e-7).then_some(q)
+}
+
+/// For a conic (degree ≤ 2): the point of the curve on the gradient line through `p`,
+/// nearest to `p` on the side where `|f|` decreases, as `(t, q)` with `t = |q − p|`.
+///
+/// Along that line `f` is a quadratic in the distance travelled: with `w` the unit vector
+/// down the gradient (towards `f = 0`), `f(p + t w)·sign(f(p)) = |f| − t |∇f| +
+/// t² s wᵀHw / 2` (`s = sign f(p)`, `H` the constant Hessian), whose smallest positive root
+/// is `2|f| / (|∇f| + √(|∇f|² − 2 s wᵀHw |f|))`.
+///
+/// Returns `None` for higher degrees, a vanishing or non-finite gradient, or no point of
+/// the curve on that line.
+pub(super) fn conic_foot(poly: &Polynomial, p: Point) -> Option<(f64, Point)> {
+    if poly.top > 2 {
+        return None;
+    }
+    let (v, g) = poly.value_and_gradient(p);
+    if v == 0.0 {
+        return Some((0.0, p));
+    }
+    let gn = g.hypot();
+    if !(gn > 0.0 && gn.is_finite() && v.is_finite()) {
+        return None;
+    }
+    let u = g / gn;
+    let c = &poly.local;
+    let uhu = 2.0 * (c[3] * u.x * u.x + c[4] * u.x * u.y + c[5] * u.y * u.y);
+    let a = v.abs();
+    let disc = gn * gn - 2.0 * v.signum() * uhu * a;
+    if disc < 0.0 {
+        return None;
+    }
+    let t = 2.0 * a / (gn + disc.sqrt());
+    Some((t, p - u * (t * v.signum())))
+}
+
+/// An upper bound on the distance from `p` to the curve. For conics, the distance to the
+/// [`conic_foot`] (closed form). Otherwise `|p − q| + r` for the first point `q` of the
+/// Newton iteration towards `f = 0` (as in [`newton_to_curve`]) whose first-order distance
+/// `r = |f(q)| / |∇f(q)|` is below 1e-9 px (so `r` is the distance to the curve up to terms
+/// of order `r²`): one iteration fewer than running Newton to convergence.
+///
+/// Returns `None` where [`newton_to_curve`] would fail (leaving the disc of radius
+/// `max_distance`, a vanishing gradient, no convergence).
+pub(super) fn distance_bound(poly: &Polynomial, p: Point, max_distance: f64) -> Option<f64> {
+    if let Some((t, _)) = conic_foot(poly, p) {
+        return (t <= max_distance).then_some(t);
+    }
+    let mut q = p;
+    for _ in 0..64 {
+        let (v, g) = poly.value_and_gradient(q);
+        let g2 = g.hypot2();
+        if v == 0.0 {
+            return Some((q - p).hypot());
+        }
+        if g2 <= 0.0 || !g2.is_finite() || !v.is_finite() {
+            return None;
+        }
+        let r = v.abs() / g2.sqrt();
+        let d = (q - p).hypot();
+        if r <= 1e-9 {
+            return Some(d + r);
+        }
+        q -= g * (v / g2);
+        if (q - p).hypot() > max_distance {
+            return None;
+        }
+    }
+    None
+}
+
+/// The unit tangent `∇f⊥ / |∇f|` (rotated +90°), if the gradient does not vanish.
+pub(super) fn unit_tangent(poly: &Polynomial, p: Point) -> Option<Vec2> {
+    let g = poly.gradient(p);
+    let n = g.hypot();
+    (n > 0.0 && n.is_finite()).then(|| Vec2::new(-g.y / n, g.x / n))
+}
+
+/// The point of the curve `poly = 0` closest to `point`, if within `max_distance`.
+///
+/// Newton steps along the gradient reach the curve; then the point slides along the tangent
+/// until `point − q` is normal to the curve (linear convergence, fast where the distance is
+/// small compared to the radius of curvature).
+///
+/// Returns `None` if no point of the curve is found within `max_distance`, or on non-finite
+/// input.
+pub fn project(poly: &Polynomial, point: Point, max_distance: f64) -> Option<Point> {
+    if !point.is_finite() || max_distance.is_nan() || max_distance < 0.0 {
+        return None;
+    }
+    let reach = 2.0 * max_distance + 1e-9;
+    let mut q = newton_to_curve(poly, point, reach)?;
+    let mut best = q;
+    let mut best_d = (q - point).hypot();
+    for _ in 0..100 {
+        let Some(t) = unit_tangent(poly, q) else {
+            break;
+        };
+        let s = (point - q).dot(t);
+        if s.abs() <= 1e-12 * (1.0 + best_d) {
+            break;
+        }
+        let Some(q2) = newton_to_curve(poly, q + t * s, reach) else {
+            break;
+        };
+        q = q2;
+        let d = (q - point).hypot();
+        if d < best_d {
+            best = q;
+            best_d = d;
+        }
+    }
+    (best_d <= max_distance).then_some(best)
+}
+
+/// The intersection point of `p = 0` and `q = 0` closest to `near`, within `max_distance`.
+///
+/// Runs Newton's method on the 2×2 system from `near`, from the projections of `near` on both
+/// curves and from 16 points on two circles around `near`; keeps the converged solutions
+/// (each curve within 1e-7 by [`Polynomial::distance_estimate`]).
+///
+/// Returns `None` if no intersection is found within `max_distance`, or on non-finite input.
+pub fn intersect_near(
+    p: &Polynomial,
+    q: &Polynomial,
+    near: Point,
+    max_distance: f64,
+) -> Option<Point> {
+    if !near.is_finite() || max_distance < 0.0 || !max_distance.is_finite() {
+        return None;
+    }
+    let mut starts = vec![near];
+    starts.extend(project(p, near, max_distance));
+    starts.extend(project(q, near, max_distance));
+    for r in [0.5 * max_distance, max_distance] {
+        for k in 0..8 {
+            starts.push(near + Vec2::from_angle(f64::from(k) * PI / 4.0) * r);
+        }
+    }
+    let mut best: Option<(Point, f64)> = None;
+    for s in starts {
+        let Some(x) = newton_system(p, q, s, near, max_distance) else {
+            continue;
+        };
+        let d = (x - near).hypot();
+        if d <= max_distance && best.is_none_or(|(_, bd)| d < bd) {
+            best = Some((x, d));
+        }
+    }
+    best.map(|(x, _)| x)
+}
+
+fn newton_system(
+    p: &Polynomial,
+    q: &Polynomial,
+    start: Point,
+    near: Point,
+    max_distance: f64,
+) -> Option<Point> {
+    let mut x = start;
+    for _ in 0..80 {
+        let ((fp, gp), (fq, gq)) = (p.value_and_gradient(x), q.value_and_gradient(x));
+        if fp == 0.0 && fq == 0.0 {
+            break;
+        }
+        let det = gp.x * gq.y - gp.y * gq.x;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let step = Vec2::new((gq.y * fp - gp.y * fq) / det, (gp.x * fq - gq.x * fp) / det);
+        if !step.is_finite() {
+            return None;
+        }
+        x -= step;
+        if (x - near).hypot() > 2.0 * max_distance + 1e-9 {
+            return None;
+        }
+        if step.hypot() <= 1e-13 * (1.0 + x.to_vec2().hypot()) {
+            break;
+        }
+    }
+    (p.distance_estimate(x) <= 1e-7 && q.distance_estimate(x) <= 1e-7).then_some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::test_util::*;
+    use crate::curve::Conic;
+
+    /// The closed-form bound on conics: a point of the curve (so at least the distance to
+    /// the curve) and, for points near the curve, within second order of that distance.
+    #[test]
+    fn conic_distance_bound() {
+        let mut rng = Rng(0x0dd_b1a5_ed5e_ed01);
+        let mut checked = 0;
+        for _ in 0..300 {
+            let k = Conic::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-20.0, 20.0),
+                rng.range(-20.0, 20.0),
+                rng.range(-100.0, 100.0),
+            );
+            let poly = Polynomial::from(k);
+            for i in 0..10 {
+                let mut p = Point::new(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
+                if i % 2 == 1 {
+                    // Near the curve: a point of it moved along the normal.
+                    let Some(q) = project(&poly, p, 10.0) else {
+                        continue;
+                    };
+                    let n = poly.gradient(q).normalize();
+                    p = q + n * rng.range(-0.05, 0.05);
+                }
+                let Some(on) = project(&poly, p, 3.0) else {
+                    continue;
+                };
+                let d = (on - p).hypot();
+                let Some(bound) = distance_bound(&poly, p, 10.0) else {
+                    continue;
+                };
+                assert!(
+                    bound >= d - 1e-9,
+                    "bound {bound} below the distance {d} at {p:?}"
+                );
+                if d < 0.05 {
+                    checked += 1;
+                    assert_le(
+                        bound - d,
+                        1e-3,
+                        "bound close to the distance near the curve",
+                    );
+                }
+            }
+        }
+        assert!(checked > 20, "only {checked} points near the curves");
+    }
+
+    #[test]
+    fn intersections_and_projection() {
+        let diag = Polynomial::new(&[(1, 0, 1.0), (0, 1, 1.0), (0, 0, -10.0)]).unwrap();
+        let bis = Polynomial::new(&[(1, 0, 1.0), (0, 1, -1.0)]).unwrap();
+        let x = intersect_near(&diag, &bis, Point::new(4.0, 6.5), 3.0).unwrap();
+        assert_point_close(x, Point::new(5.0, 5.0), 1e-12, "line/line");
+        assert!(intersect_near(&diag, &bis, Point::new(0.0, 0.0), 3.0).is_none());
+        // Parallel lines never meet.
+        let par = Polynomial::new(&[(1, 0, 1.0), (0, 1, 1.0), (0, 0, -12.0)]).unwrap();
+        assert!(intersect_near(&diag, &par, Point::new(5.0, 5.0), 5.0).is_none());
+        // Line y = 0 and circle (x − 3)² + y² = 25: (−2, 0) and (8, 0).
+        let axis = Polynomial::new(&[(0, 1, 1.0)]).unwrap();
+        let circle = Polynomial::from(Conic::new(1.0, 0.0, 1.0, -6.0, 0.0, -16.0));
+        let x = intersect_near(&axis, &circle, Point::new(7.0, 1.0), 2.0).unwrap();
+        assert_point_close(x, Point::new(8.0, 0.0), 1e-12, "line/circle right");
+        let x = intersect_near(&circle, &axis, Point::new(-1.5, -0.5), 2.0).unwrap();
+        assert_point_close(x, Point::new(-2.0, 0.0), 1e-12, "line/circle left");
+        // Circle x² + y² = 25 and ellipse x²/18 + y²/32 = 1 meet at (±3, ±4).
+        let c5 = Polynomial::from(Conic::new(1.0, 0.0, 1.0, 0.0, 0.0, -25.0));
+        let ell = Polynomial::from(Conic::new(16.0, 0.0, 9.0, 0.0, 0.0, -288.0));
+        for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+            let near = Point::new(sx * 3.3, sy * 3.8);
+            let x = intersect_near(&c5, &ell, near, 1.0).unwrap();
+            assert_point_close(x, Point::new(sx * 3.0, sy * 4.0), 1e-12, "circle/ellipse");
+        }
+        assert!(intersect_near(&c5, &ell, Point::new(3.3, 3.8), 0.1).is_none());
+        // Projection on a circle.
+        let p = project(&c5, Point::new(6.0, 8.0), 6.0).unwrap();
+        assert_point_close(p, Point::new(3.0, 4.0), 1e-12, "projection on circle");
+        assert!(project(&c5, Point::new(6.0, 8.0), 4.0).is_none());
+        // Projection on the cubic curve is orthogonal.
+        let (cubic, at) = cubic_curve();
+        let on = at(1.0);
+        let n = cubic.gradient(on).normalize();
+        let p = project(&cubic, on + n * 0.7, 1.0).unwrap();
+        assert_point_close(p, on, 1e-9, "projection on cubic");
+    }
+}
