@@ -21,6 +21,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         num(6, mask.width() as f32 - x0),
         num(7, mask.height() as f32 - y0),
     );
+    // Clamped to the image.
+    let (x0, y0) = (
+        x0.clamp(0.0, mask.width() as f32),
+        y0.clamp(0.0, mask.height() as f32),
+    );
+    let (w, h) = (
+        w.clamp(1.0, mask.width() as f32 - x0),
+        h.clamp(1.0, mask.height() as f32 - y0),
+    );
     let k = num(8, 4.0);
     let (pw, ph) = ((w * k).ceil() as u32, (h * k).ceil() as u32);
     let mut pix = tiny_skia::Pixmap::new(pw, ph).ok_or("picture too large")?;

@@ -124,9 +124,10 @@ fn ellipse_distance(p: Point, centre: Point, a: f64, b: f64, theta: f64) -> f64 
 
 /// The curves drawn for the discs (circles turned into cubics, kept wherever tiny-skia draws
 /// them exactly) lie within 0.8 px of the true circle, within 0.55 px for discs decomposed
-/// into a single piece (the curves keep the background beside every pixel of a piece on
-/// their far side, end pixels included, which moves them up to 0.76 px from the truth).
-/// Measured: 4 of the 19 discs keep curves; the rest are exact polygons.
+/// into a single piece (the former bounds of the exact arcs, 0.75 and 0.5, plus the 1/16 px
+/// grid's snapping, up to 0.045 px, and the cubics' 0.01 px).
+/// Measured: 8 of the 19 discs keep curves (their own arcs where tiny-skia draws them right,
+/// renderer-safe cubics through the exact polygon elsewhere); the rest are exact polygons.
 #[test]
 fn disc_curves_match_the_true_circle() {
     let mask = load("syn_discs_r3_to_r200.png");
@@ -152,7 +153,7 @@ fn disc_curves_match_the_true_circle() {
         with_curves += usize::from(!points.is_empty());
     }
     assert!(
-        with_curves >= 2,
+        with_curves >= 8,
         "only {with_curves} of {discs} discs have curves"
     );
 }
@@ -283,22 +284,22 @@ const BOUNDS: &[(&str, Model, u64, u64)] = &[
     ("glyph_g_liberationserif_cap120", Model::Circle, 0, 0),
     ("glyph_g_liberationserif_cap120", Model::Conic, 0, 0),
     ("glyph_g_liberationserif_cap120", Model::Poly(3), 0, 0),
-    ("lineart_cat_symbola_h300", Model::Line, 0, 16),
+    ("lineart_cat_symbola_h300", Model::Line, 0, 15),
     ("lineart_cat_symbola_h300", Model::Circle, 0, 4),
-    ("lineart_cat_symbola_h300", Model::Conic, 0, 4),
-    ("lineart_cat_symbola_h300", Model::Poly(3), 0, 4),
+    ("lineart_cat_symbola_h300", Model::Conic, 0, 3),
+    ("lineart_cat_symbola_h300", Model::Poly(3), 0, 3),
     ("sil_horse_skimage", Model::Line, 0, 3),
     ("sil_horse_skimage", Model::Circle, 0, 0),
-    ("sil_horse_skimage", Model::Conic, 0, 2),
-    ("sil_horse_skimage", Model::Poly(3), 0, 3),
+    ("sil_horse_skimage", Model::Conic, 0, 3),
+    ("sil_horse_skimage", Model::Poly(3), 0, 2),
     ("suits_black_dejavusans_cap120", Model::Line, 0, 1),
     ("suits_black_dejavusans_cap120", Model::Circle, 0, 0),
     ("suits_black_dejavusans_cap120", Model::Conic, 0, 0),
     ("suits_black_dejavusans_cap120", Model::Poly(3), 0, 0),
-    ("syn_big3000_many_shapes", Model::Line, 0, 36),
-    ("syn_big3000_many_shapes", Model::Circle, 0, 39),
+    ("syn_big3000_many_shapes", Model::Line, 0, 37),
+    ("syn_big3000_many_shapes", Model::Circle, 0, 38),
     ("syn_big3000_many_shapes", Model::Conic, 0, 46),
-    ("syn_big3000_many_shapes", Model::Poly(3), 0, 53),
+    ("syn_big3000_many_shapes", Model::Poly(3), 0, 52),
     ("syn_border_touching", Model::Line, 0, 0),
     ("syn_border_touching", Model::Circle, 0, 0),
     ("syn_border_touching", Model::Conic, 0, 0),
@@ -321,13 +322,13 @@ const BOUNDS: &[(&str, Model, u64, u64)] = &[
     ("syn_fig15_ellipse_two_holes", Model::Poly(3), 0, 0),
     ("syn_polygons_sharp", Model::Line, 0, 1),
     ("syn_polygons_sharp", Model::Circle, 0, 1),
-    ("syn_polygons_sharp", Model::Conic, 0, 0),
-    ("syn_polygons_sharp", Model::Poly(3), 0, 0),
+    ("syn_polygons_sharp", Model::Conic, 0, 1),
+    ("syn_polygons_sharp", Model::Poly(3), 0, 1),
     ("syn_tiny_blobs", Model::Line, 0, 8),
     ("syn_tiny_blobs", Model::Circle, 0, 8),
     ("syn_tiny_blobs", Model::Conic, 0, 9),
     ("syn_tiny_blobs", Model::Poly(3), 0, 9),
-    ("word_Layers_dejavusans-bold_cap40", Model::Line, 0, 0),
+    ("word_Layers_dejavusans-bold_cap40", Model::Line, 0, 1),
     ("word_Layers_dejavusans-bold_cap40", Model::Circle, 0, 0),
     ("word_Layers_dejavusans-bold_cap40", Model::Conic, 0, 0),
     ("word_Layers_dejavusans-bold_cap40", Model::Poly(3), 0, 0),

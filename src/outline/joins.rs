@@ -12,6 +12,9 @@
 //!   segment bridges the two.
 //! * A *cracked* junction draws pixels `a` and `b` along their cracks and each curve ends
 //!   at the projection of the nearer crack corner.
+//! * Two straight segments of the exact polygon bridged that way share one vertex instead
+//!   where both still separate their pixels from the background ([`super::vertices`]),
+//!   unless the render check asked for the bridge back (`keep_bridge`).
 //! * A contour of one stretch with a curve runs once round it, from and back to the
 //!   projection of `m`.
 //!
@@ -23,6 +26,7 @@ use super::builder::Builder;
 use super::cracks::{centre, crack_polyline};
 use super::path::ContourPath;
 use super::stretch::{Drawing, Stretch};
+use super::vertices::{shared_vertex, Sides};
 use crate::curve::{intersect_near, level_curve_path, project, PathCommand};
 use crate::pixel::Pixel;
 use kurbo::{BezPath, Point};
@@ -49,6 +53,8 @@ type Drawn = Option<(Vec<PathCommand>, f64)>;
 pub(crate) struct Memo {
     intersections: HashMap<(usize, usize), Option<Point>>,
     paths: HashMap<(usize, [u64; 4]), Drawn>,
+    /// The centres each straight segment separates, by stretch id.
+    sides: HashMap<usize, Sides>,
 }
 
 /// A drawing and the stretches that could not be drawn along their curve in it.
@@ -57,6 +63,8 @@ pub(crate) struct Built {
     pub path: ContourPath,
     /// Per command of the path: a segment of a polygon that may be smoothed.
     pub smooth: Vec<bool>,
+    /// Per junction: the two straight segments share a vertex off their lines.
+    pub shared: Vec<bool>,
     /// Indices of stretches with a curve drawn along their cracks instead.
     pub failed: Vec<usize>,
 }
@@ -92,6 +100,7 @@ pub(crate) fn build(
     points: &[Pixel],
     stretches: &[Stretch],
     cracked: &[bool],
+    keep_bridge: &[bool],
     memo: &mut Memo,
     grid: u8,
     smooth: bool,
@@ -113,8 +122,10 @@ pub(crate) fn build(
     // Junction j joins stretch j (its end) and stretch (j + 1) % m (its start).
     let mut ends = vec![Point::ZERO; m];
     let mut starts = vec![Point::ZERO; m];
+    let mut bridged = vec![false; m];
     loop {
         out.joins = Default::default();
+        bridged.iter_mut().for_each(|v| *v = false);
         let mut lost = Vec::new();
         for j in 0..m {
             let k = (j + 1) % m;
@@ -147,6 +158,7 @@ pub(crate) fn build(
                     }
                 }
                 out.joins.bridged += 1;
+                bridged[j] = true;
                 (mid, mid)
             };
             match (&sj.poly, use_curve[j]) {
@@ -174,6 +186,40 @@ pub(crate) fn build(
             }
         }
     }
+    // Straight segments bridged at a junction share a vertex where they can.
+    let straight = |k: usize| use_curve[k] && stretches[k].drawing == Drawing::Straight;
+    let mut shared = vec![false; m];
+    for j in 0..m {
+        let k = (j + 1) % m;
+        if j == k || keep_bridge[j] || !bridged[j] || !straight(j) || !straight(k) {
+            continue;
+        }
+        for i in [j, k] {
+            let s = &stretches[i];
+            memo.sides
+                .entry(s.id)
+                .or_insert_with(|| Sides::of(points, s.first, s.last));
+        }
+        let v = shared_vertex(
+            points,
+            stretches[j].last,
+            stretches[k].first,
+            starts[j],
+            ends[j],
+            starts[k],
+            ends[k],
+            &memo.sides[&stretches[j].id],
+            &memo.sides[&stretches[k].id],
+            |p| b.snap(p),
+        );
+        if let Some(v) = v {
+            shared[j] = true;
+            ends[j] = v;
+            starts[k] = v;
+            out.joins.shared += 1;
+            out.joins.bridged -= 1;
+        }
+    }
     for (k, s) in stretches.iter().enumerate() {
         // The segments of polygons (and the bridges into them) may become cubics.
         b.smooth = smooth && s.drawing == Drawing::Straight;
@@ -191,7 +237,11 @@ pub(crate) fn build(
         }
         let (from, to) = (starts[k], ends[k]);
         b.goto(from);
-        if !(m > 1 || head || tail) || (to - from).hypot() > 1e-9 {
+        if s.drawing == Drawing::Straight && m > 1 {
+            // A straight segment; its ends may be vertices shared with its neighbours,
+            // off its own line.
+            b.goto(to);
+        } else if !(m > 1 || head || tail) || (to - from).hypot() > 1e-9 {
             let key = (s.id, [from.x, from.y, to.x, to.y].map(f64::to_bits));
             let drawn = memo
                 .paths
@@ -226,6 +276,7 @@ pub(crate) fn build(
     Built {
         path: out,
         smooth: tags,
+        shared,
         failed,
     }
 }

@@ -31,8 +31,10 @@ mod cracks;
 mod joins;
 mod path;
 mod render_check;
+mod separation;
 mod smooth;
 mod stretch;
+mod vertices;
 
 pub use joins::JUNCTION_MAX_DISTANCE;
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
@@ -43,7 +45,7 @@ use crate::model::Basis;
 use builder::Builder;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
-use render_check::{misplaced_points, Rendered};
+use render_check::{misplaced_pixels, nearest_points, points_near, Rendered};
 use smooth::smooth_polygon;
 use stretch::{Drawing, Stretch, Stretcher, Unused};
 
@@ -133,10 +135,19 @@ pub fn contour_path(
         }
     }
     let mut cracked = vec![false; stretches.len()];
+    let mut keep_bridge = vec![false; stretches.len()];
     let mut memo = Memo::default();
     let mut reference: Option<Rendered> = None;
     for _ in 0..MAX_ROUNDS {
-        let built = build(points, &stretches, &cracked, &mut memo, grid, smooth);
+        let built = build(
+            points,
+            &stretches,
+            &cracked,
+            &keep_bridge,
+            &mut memo,
+            grid,
+            smooth,
+        );
         let m = stretches.len();
         let mut refine = vec![false; m];
         for &k in &built.failed {
@@ -152,13 +163,15 @@ pub fn contour_path(
             if stretches.iter().all(|s| s.drawing == Drawing::Cracks) && built.failed.is_empty() {
                 return finish(path, &stretches, fallbacks);
             }
-            let rendered = Rendered::new(path.start, &path.commands);
             let reference = reference.get_or_insert_with(|| {
+                // Curves stay within STRAY_MARGIN (2 px) of their pixels: two more pixels
+                // round the reference make every drawing's window the same.
                 let c = cracks_path(points);
-                Rendered::new(c.start, &c.commands)
+                Rendered::with_margin(c.start, &c.commands, 2)
             });
-            let bad = misplaced_points(points, reference, &rendered);
-            if bad.is_empty() {
+            let rendered = Rendered::like(path.start, &path.commands, reference);
+            let wrong = misplaced_pixels(reference, &rendered);
+            if wrong.is_empty() {
                 let mut path = path;
                 if built.smooth.iter().any(|&t| t) {
                     path.commands =
@@ -171,35 +184,66 @@ pub fn contour_path(
                     .partition_point(|s| s.last < q)
                     .min(stretches.len() - 1)
             };
-            for &i in &bad {
-                let mut near_refinable = false;
-                for q in [i + n - 1, i, i + 1] {
-                    let k = holding(q % n);
-                    if stretches[k].refinable() {
-                        near_refinable = true;
-                        if !refine[k] {
-                            refine[k] = true;
-                            changed = true;
-                            fallbacks.rendered +=
-                                usize::from(stretches[k].drawing == Drawing::Curve);
+            // Remedies at the contour points nearest to the wrong pixels; if none applies
+            // there (a thin part, where another stretch passes by), at every point near
+            // them.
+            for pass in 0..2 {
+                if changed {
+                    break;
+                }
+                let bad = if pass == 0 {
+                    nearest_points(points, &wrong)
+                } else {
+                    points_near(points, &wrong, 2)
+                };
+                for &i in &bad {
+                    // First remedy: bridges back at the shared vertices of the stretches
+                    // around `i` (a shared vertex tilts its whole segment).
+                    let mut unshared = false;
+                    let m = stretches.len();
+                    for q in [i + n - 1, i, i + 1] {
+                        let k = holding(q % n);
+                        for j in [(k + m - 1) % m, k] {
+                            if built.shared[j] && !keep_bridge[j] {
+                                keep_bridge[j] = true;
+                                unshared = true;
+                                changed = true;
+                            }
                         }
                     }
-                }
-                if near_refinable {
-                    continue;
-                }
-                // Only cracks and one- or two-point stretches around: draw the end pixels
-                // at the junctions within two points of `i` along their cracks.
-                let cyclic = |p: usize| {
-                    let d = p.abs_diff(i);
-                    d.min(n - d)
-                };
-                for back in 0..6 {
-                    let j = holding((i + n + 2 - back % n) % n);
-                    let near = cyclic(stretches[j].last).min(cyclic((stretches[j].last + 1) % n));
-                    if near <= 2 && !cracked[j] {
-                        cracked[j] = true;
-                        changed = true;
+                    if unshared {
+                        continue;
+                    }
+                    let mut near_refinable = false;
+                    for q in [i + n - 1, i, i + 1] {
+                        let k = holding(q % n);
+                        if stretches[k].refinable() {
+                            near_refinable = true;
+                            if !refine[k] {
+                                refine[k] = true;
+                                changed = true;
+                                fallbacks.rendered +=
+                                    usize::from(stretches[k].drawing == Drawing::Curve);
+                            }
+                        }
+                    }
+                    if near_refinable {
+                        continue;
+                    }
+                    // Only cracks and one- or two-point stretches around: draw the end pixels
+                    // at the junctions within two points of `i` along their cracks.
+                    let cyclic = |p: usize| {
+                        let d = p.abs_diff(i);
+                        d.min(n - d)
+                    };
+                    for back in 0..6 {
+                        let j = holding((i + n + 2 - back % n) % n);
+                        let near =
+                            cyclic(stretches[j].last).min(cyclic((stretches[j].last + 1) % n));
+                        if near <= 2 && !cracked[j] {
+                            cracked[j] = true;
+                            changed = true;
+                        }
                     }
                 }
             }
@@ -214,6 +258,7 @@ pub fn contour_path(
         if refine.iter().any(|&r| r) {
             let mut next = Vec::with_capacity(m + 8);
             let mut next_cracked = Vec::with_capacity(m + 8);
+            let mut next_keep = Vec::with_capacity(m + 8);
             for (k, s) in stretches.iter().enumerate() {
                 match refine[k].then(|| st.refine(s)).flatten() {
                     Some(parts) => {
@@ -222,16 +267,19 @@ pub fn contour_path(
                         for (i, p) in parts.into_iter().enumerate() {
                             next.push(p);
                             next_cracked.push(i == last && cracked[k]);
+                            next_keep.push(i == last && keep_bridge[k]);
                         }
                     }
                     None => {
                         next.push(s.clone());
                         next_cracked.push(cracked[k]);
+                        next_keep.push(keep_bridge[k]);
                     }
                 }
             }
             stretches = next;
             cracked = next_cracked;
+            keep_bridge = next_keep;
         }
     }
     // Did not converge (not seen): the contour along its cracks is exact.

@@ -94,6 +94,9 @@ pub struct JoinCounts {
     pub intersection: usize,
     /// Otherwise: projections (or crack ends) bridged by a segment when distinct.
     pub bridged: usize,
+    /// Straight segments that do not intersect near their junction, ending at one shared
+    /// vertex instead of a bridge.
+    pub shared: usize,
     /// Repaired: the two end pixels drawn along their cracks.
     pub cracked: usize,
 }
@@ -102,6 +105,7 @@ impl JoinCounts {
     pub(crate) fn add(&mut self, o: &JoinCounts) {
         self.intersection += o.intersection;
         self.bridged += o.bridged;
+        self.shared += o.shared;
         self.cracked += o.cracked;
     }
 }

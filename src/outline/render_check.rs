@@ -24,7 +24,33 @@ pub(crate) struct Rendered {
 
 impl Rendered {
     /// Fills the closed path `M start commands Z`.
+    #[cfg(test)]
     pub(crate) fn new(start: Point, commands: &[PathCommand]) -> Rendered {
+        Rendered::within(start, commands, None)
+    }
+
+    /// [`Rendered::new`] on a window covering `like`'s too (then rows of the two line up,
+    /// and [`misplaced_pixels`] compares them as byte slices).
+    pub(crate) fn like(start: Point, commands: &[PathCommand], like: &Rendered) -> Rendered {
+        Rendered::within(start, commands, Some(like))
+    }
+
+    /// [`Rendered::new`] with `margin` more pixels round the window (a reference that
+    /// paths drawn [`Rendered::like`] it fit in, so that their rows line up).
+    pub(crate) fn with_margin(start: Point, commands: &[PathCommand], margin: i64) -> Rendered {
+        Rendered::within_margin(start, commands, None, margin)
+    }
+
+    fn within(start: Point, commands: &[PathCommand], like: Option<&Rendered>) -> Rendered {
+        Rendered::within_margin(start, commands, like, 0)
+    }
+
+    fn within_margin(
+        start: Point,
+        commands: &[PathCommand],
+        like: Option<&Rendered>,
+        margin: i64,
+    ) -> Rendered {
         let (mut lo, mut hi) = (start, start);
         let mut grow = |p: Point| {
             lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
@@ -52,10 +78,17 @@ impl Rendered {
         }
         // Two pixels of margin: the scan converter keeps clipping off only when the
         // conservatively rounded bounds are inside the mask.
-        let x0 = lo.x.floor() as i64 - 2;
-        let y0 = lo.y.floor() as i64 - 2;
-        let width = hi.x.ceil() as i64 + 2 - x0;
-        let height = hi.y.ceil() as i64 + 2 - y0;
+        let mut x0 = lo.x.floor() as i64 - 2 - margin;
+        let mut y0 = lo.y.floor() as i64 - 2 - margin;
+        let mut x1 = hi.x.ceil() as i64 + 2 + margin;
+        let mut y1 = hi.y.ceil() as i64 + 2 + margin;
+        if let Some(r) = like {
+            x0 = x0.min(r.x0);
+            y0 = y0.min(r.y0);
+            x1 = x1.max(r.x0 + r.width);
+            y1 = y1.max(r.y0 + r.height);
+        }
+        let (width, height) = (x1 - x0, y1 - y0);
         let mut out = Rendered {
             x0,
             y0,
@@ -83,6 +116,7 @@ impl Rendered {
     }
 
     /// True when the pixel is painted.
+    #[cfg(test)]
     pub(crate) fn painted(&self, p: Pixel) -> bool {
         let (x, y) = (i64::from(p.x) - self.x0, i64::from(p.y) - self.y0);
         if x < 0 || y < 0 || x >= self.width || y >= self.height {
@@ -138,40 +172,54 @@ fn tiny_path(start: Point, commands: &[PathCommand], dx: f64, dy: f64) -> Option
     pb.finish()
 }
 
-/// The pixels that `path` and `reference` paint differently.
+/// The pixels that `path` and `reference` paint differently, row by row (rows that agree
+/// are compared as byte slices).
 pub(crate) fn misplaced_pixels(reference: &Rendered, path: &Rendered) -> Vec<Pixel> {
     let x0 = reference.x0.min(path.x0);
     let y0 = reference.y0.min(path.y0);
     let x1 = (reference.x0 + reference.width).max(path.x0 + path.width);
     let y1 = (reference.y0 + reference.height).max(path.y0 + path.height);
+    fn row(r: &Rendered, y: i64) -> (i64, &[u8]) {
+        match &r.mask {
+            Some(m) if y >= r.y0 && y < r.y0 + r.height => {
+                let w = r.width as usize;
+                let start = (y - r.y0) as usize * w;
+                (r.x0, &m.data()[start..start + w])
+            }
+            _ => (r.x0, &[]),
+        }
+    }
     let mut bad = Vec::new();
     for y in y0..y1 {
+        let (ra, a) = row(reference, y);
+        let (rb, b) = row(path, y);
+        if ra == rb && a == b {
+            continue;
+        }
+        let at = |from: i64, data: &[u8], x: i64| {
+            let i = x - from;
+            i >= 0 && (i as usize) < data.len() && data[i as usize] != 0
+        };
         for x in x0..x1 {
-            let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) else {
-                continue;
-            };
-            let q = Pixel::new(px, py);
-            if reference.painted(q) != path.painted(q) {
-                bad.push(q);
+            if at(ra, a, x) != at(rb, b, x) {
+                if let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) {
+                    bad.push(Pixel::new(px, py));
+                }
             }
         }
     }
     bad
 }
 
-/// Indices of the contour points nearest to each pixel that `path` and `reference` paint
-/// differently (each index once, ascending). With the contour's crack polygon as the
-/// reference — exactly the pixels the contour encloses — a path that differs nowhere
-/// paints exactly those, so the nonzero sum of all contours' paths is the image: this
-/// catches a curve cutting a pixel of a neighbouring contour too, not only the contour's
-/// own pixels and the background beside them.
-pub(crate) fn misplaced_points(
-    points: &[Pixel],
-    reference: &Rendered,
-    path: &Rendered,
-) -> Vec<usize> {
-    let mut bad: Vec<usize> = misplaced_pixels(reference, path)
-        .into_iter()
+/// Indices of the contour points nearest to each of `pixels` (each index once, ascending).
+/// With the contour's crack polygon as the reference of [`misplaced_pixels`] — exactly the
+/// pixels the contour encloses — a path that differs nowhere paints exactly those, so the
+/// nonzero sum of all contours' paths is the image: this catches a curve cutting a pixel
+/// of a neighbouring contour too, not only the contour's own pixels and the background
+/// beside them.
+pub(crate) fn nearest_points(points: &[Pixel], pixels: &[Pixel]) -> Vec<usize> {
+    let mut out: Vec<usize> = pixels
+        .iter()
         .filter_map(|q| {
             points
                 .iter()
@@ -183,9 +231,21 @@ pub(crate) fn misplaced_points(
                 .map(|(i, _)| i)
         })
         .collect();
-    bad.sort_unstable();
-    bad.dedup();
-    bad
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Indices of the contour points within `radius` (in x and in y) of any of `pixels`.
+pub(crate) fn points_near(points: &[Pixel], pixels: &[Pixel], radius: i32) -> Vec<usize> {
+    (0..points.len())
+        .filter(|&i| {
+            let p = points[i];
+            pixels
+                .iter()
+                .any(|q| (p.x - q.x).abs() <= radius && (p.y - q.y).abs() <= radius)
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -144,7 +144,7 @@ pub(crate) fn smooth_polygon(
             break;
         }
         let out = assemble(&merges);
-        let rendered = Rendered::new(start, &out);
+        let rendered = Rendered::like(start, &out, reference);
         let bad = super::render_check::misplaced_pixels(reference, &rendered);
         if bad.is_empty() {
             return out;

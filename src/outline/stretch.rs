@@ -10,14 +10,19 @@
 //! drawn along their cracks, exact by construction; so refinement always terminates, and
 //! stairs of cracks only remain where the input has one-pixel features.
 
+use super::separation::Separation;
 use crate::curve::Polynomial;
 use crate::decompose::{neighbour_sides, OutlierRule, Piece};
 use crate::level::{border_polynomial, polynomial_of};
 use crate::model::{Basis, Model};
 use crate::pixel::{Pixel, PixelSet};
-use crate::recognize::{max_margin_direction, Outcome, Recognizer, Side};
+use crate::recognize::max_margin_direction;
 use kurbo::Point;
-use std::sync::Arc;
+
+/// Most points of one straight segment of a polygon: growing one costs time quadratic in
+/// its length ([`Separation`] checks every pair of sides), so longer runs are cut, to meet
+/// again at a vertex shared on their (nearly) common line.
+const MAX_SEGMENT_POINTS: usize = 160;
 
 /// How a stretch is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,7 +78,6 @@ pub(crate) enum Unused {
 /// Makes stretches, numbering them.
 pub(crate) struct Stretcher<'a> {
     points: &'a [Pixel],
-    line: Option<Recognizer>,
     next_id: usize,
     tolerance: f64,
 }
@@ -83,7 +87,6 @@ impl<'a> Stretcher<'a> {
     pub fn new(points: &'a [Pixel], tolerance: f64) -> Stretcher<'a> {
         Stretcher {
             points,
-            line: None,
             next_id: 0,
             tolerance,
         }
@@ -138,20 +141,14 @@ impl<'a> Stretcher<'a> {
         }
     }
 
-    /// The exact polygon of `first..=last`: its digital straight segments, found greedily by
-    /// the line recognizer with the background beside *every* point of a segment as
-    /// outliers, its two end points included (the paper's pieces leave the ends free, which
-    /// lets a segment's line cut the background pixel beside its end), each drawn along its
+    /// The exact polygon of `first..=last`: its straight segments, grown greedily while a
+    /// line separates strictly the segment's pixel centres and the foreground beside them
+    /// from the background beside *every* one of its pixels, the two end pixels included
+    /// (the paper's pieces leave the ends free, which lets a line cut the background pixel
+    /// beside an end) — exact, incremental ([`Separation`]). Each is drawn along its
     /// largest-margin line. A single pixel always is such a segment, so every point is
     /// covered.
     pub fn polygon(&mut self, first: usize, last: usize) -> Vec<Stretch> {
-        if self.line.is_none() {
-            let basis: Arc<dyn Basis> = Arc::new(Model::Line.basis());
-            self.line = Recognizer::new(basis, &[0, 0]);
-        }
-        let Some(mut rec) = self.line.take() else {
-            return vec![self.cracks(first, last)];
-        };
         let points = self.points;
         let n = points.len();
         let xy = |p: Pixel| [i64::from(p.x), i64::from(p.y)];
@@ -159,17 +156,17 @@ impl<'a> Stretcher<'a> {
         let mut out = Vec::new();
         let mut i = first;
         while i <= last {
-            rec.reset(&xy(points[i]));
+            let mut sep = Separation::new();
             let mut in_piece = PixelSet::default();
-            let mut upper = PixelSet::default();
-            let mut lower = PixelSet::default();
+            let mut high = PixelSet::default();
+            let mut low = PixelSet::default();
             let mut j = i;
             loop {
                 let p = points[j];
-                if lower.remove(&p) {
-                    rec.remove_outlier(&xy(p), Side::Lower);
+                let mut ok = true;
+                if low.insert(p) {
+                    ok &= sep.add_low(xy(p));
                 }
-                rec.add_inlier(&xy(p));
                 in_piece.insert(p);
                 let (prev, next) = (points[(j + n - 1) % n], points[(j + 1) % n]);
                 if let Some(sides) = neighbour_sides(prev, p, next) {
@@ -177,20 +174,19 @@ impl<'a> Stretcher<'a> {
                         if in_piece.contains(&q) {
                             continue;
                         }
-                        if right && upper.insert(q) {
-                            rec.add_outlier(&xy(q), Side::Upper);
+                        if right && high.insert(q) {
+                            ok &= sep.add_high(xy(q));
                         }
-                        if left && !right && lower.insert(q) {
-                            rec.add_outlier(&xy(q), Side::Lower);
+                        if left && !right && low.insert(q) {
+                            ok &= sep.add_low(xy(q));
                         }
                     }
                 }
-                let ok = matches!(rec.recognize(), Outcome::Described);
                 if !ok && j > i {
                     j -= 1;
                     break;
                 }
-                if !ok || j == last {
+                if !ok || j == last || j + 1 - i >= MAX_SEGMENT_POINTS {
                     break;
                 }
                 j += 1;
@@ -198,7 +194,6 @@ impl<'a> Stretcher<'a> {
             out.push(self.segment(&basis, i, j));
             i = j + 1;
         }
-        self.line = Some(rec);
         out
     }
 
@@ -309,6 +304,23 @@ impl<'a> Stretcher<'a> {
             return Some(vec![self.cracks(s.first, s.last)]);
         }
         let mid = s.first + s.len() / 2 - 1;
+        if s.drawing == Drawing::Straight {
+            // Part of a straight segment is one (its outliers are a subset): each half
+            // gets its own largest-margin line, no recognition needed.
+            // (A piece of the line model need not be one with its end pixels' background:
+            // a half without such a line is decomposed again.)
+            let basis = Model::Line.basis();
+            let mut out = Vec::new();
+            for (a, b) in [(s.first, mid), (mid + 1, s.last)] {
+                let half = self.segment(&basis, a, b);
+                if half.drawing == Drawing::Straight || a == b {
+                    out.push(half);
+                } else {
+                    out.extend(self.polygon(a, b));
+                }
+            }
+            return Some(out);
+        }
         let mut out = self.polygon(s.first, mid);
         out.extend(self.polygon(mid + 1, s.last));
         Some(out)

@@ -58,12 +58,7 @@ fn check(mask: &Mask, model: Model, grid: u8) -> (usize, usize) {
         }
         let reference = cracks_path(&c.points);
         let reference = Rendered::new(reference.start, &reference.commands);
-        bad += misplaced_points(
-            &c.points,
-            &reference,
-            &Rendered::new(cp.start, &cp.commands),
-        )
-        .len();
+        bad += misplaced_pixels(&reference, &Rendered::new(cp.start, &cp.commands)).len();
     }
     (bad, off_grid)
 }
