@@ -11,6 +11,7 @@
 //! stairs of cracks only remain where the input has one-pixel features.
 
 use super::separation::Separation;
+use super::vertices::side_pixels;
 use crate::curve::Polynomial;
 use crate::decompose::{neighbour_sides, OutlierRule, Piece};
 use crate::level::{border_polynomial, polynomial_of};
@@ -240,30 +241,11 @@ impl<'a> Stretcher<'a> {
         last: usize,
         scaled: bool,
     ) -> Option<(Polynomial, f64)> {
-        let points = self.points;
-        let n = points.len();
         let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
-        let inliers: PixelSet = points[first..=last].iter().copied().collect();
-        let (mut low, mut high): (Vec<[i64; 2]>, Vec<[i64; 2]>) = (Vec::new(), Vec::new());
-        let (mut seen_up, mut seen_low) = (PixelSet::default(), PixelSet::default());
-        for k in first..=last {
-            low.push(xy(&points[k]));
-            let (prev, next) = (points[(k + n - 1) % n], points[(k + 1) % n]);
-            if let Some(sides) = neighbour_sides(prev, points[k], next) {
-                for (q, right, left) in sides {
-                    if inliers.contains(&q) {
-                        continue;
-                    }
-                    if right && seen_up.insert(q) {
-                        high.push(xy(&q));
-                    }
-                    if left && !right && seen_low.insert(q) {
-                        low.push(xy(&q));
-                    }
-                }
-            }
-        }
-        let origin = xy(&points[first]);
+        let (low, high) = side_pixels(self.points, first, last);
+        let (low, high): (Vec<[i64; 2]>, Vec<[i64; 2]>) =
+            (low.iter().map(xy).collect(), high.iter().map(xy).collect());
+        let origin = xy(&self.points[first]);
         let poly = max_margin_direction(basis, &origin, &low, &high, scaled)
             .and_then(|(a, level)| polynomial_of(basis, &origin, &a, level))?;
         let clearance = low

@@ -63,20 +63,24 @@ fn check(mask: &Mask, model: Model, grid: u8) -> (usize, usize) {
     (bad, off_grid)
 }
 
-#[test]
-fn single_pixel_is_its_square() {
-    let mask = Mask::from_ascii("...\n.#.\n...");
+/// The path of the first contour of `mask` decomposed with `model`, default options.
+fn first_path(mask: &Mask, model: Model) -> ContourPath {
     let d = decompose(
-        trace(&mask, Convention::Default),
-        Model::Line,
+        trace(mask, Convention::Default),
+        model,
         OutlierRule::NotInPiece,
     );
-    let cp = contour_path(
+    contour_path(
         &d.contours[0],
         &d.pieces[0],
         &d.model.basis(),
         &OutlineOptions::default(),
-    );
+    )
+}
+
+#[test]
+fn single_pixel_is_its_square() {
+    let cp = first_path(&Mask::from_ascii("...\n.#.\n..."), Model::Line);
     assert_eq!(cp.start, kurbo::Point::new(2.0, 1.0));
     assert_eq!(cp.commands.len(), 4);
     assert!(exact_by_construction(&cp));
@@ -102,18 +106,8 @@ fn disc_is_exact() {
             assert_eq!(check(&mask, model, grid), (0, 0), "{model} grid {grid}");
         }
     }
-    let d = decompose(
-        trace(&mask, Convention::Default),
-        Model::Circle,
-        OutlierRule::NotInPiece,
-    );
-    let cp = contour_path(
-        &d.contours[0],
-        &d.pieces[0],
-        &d.model.basis(),
-        &OutlineOptions::default(),
-    );
-    assert_eq!(cp.counts().arc, 0);
+    // Arcs are written as cubics.
+    assert_eq!(first_path(&mask, Model::Circle).counts().arc, 0);
 }
 
 #[test]

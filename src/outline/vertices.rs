@@ -30,29 +30,40 @@ pub(crate) struct Sides {
 impl Sides {
     /// The sides of the points `first..=last` of a closed contour.
     pub(crate) fn of(points: &[Pixel], first: usize, last: usize) -> Sides {
-        let n = points.len();
-        let inliers: PixelSet = points[first..=last].iter().copied().collect();
-        let (mut low, mut high) = (Vec::new(), Vec::new());
-        let (mut seen_up, mut seen_low) = (PixelSet::default(), PixelSet::default());
-        for k in first..=last {
-            low.push(centre(points[k]));
-            let (prev, next) = (points[(k + n - 1) % n], points[(k + 1) % n]);
-            if let Some(sides) = neighbour_sides(prev, points[k], next) {
-                for (q, right, left) in sides {
-                    if inliers.contains(&q) {
-                        continue;
-                    }
-                    if right && seen_up.insert(q) {
-                        high.push(centre(q));
-                    }
-                    if left && !right && seen_low.insert(q) {
-                        low.push(centre(q));
-                    }
+        let (low, high) = side_pixels(points, first, last);
+        Sides {
+            low: low.into_iter().map(centre).collect(),
+            high: high.into_iter().map(centre).collect(),
+        }
+    }
+}
+
+/// The pixels a drawing of the points `first..=last` of a closed contour must keep apart:
+/// those points and the foreground beside them (`low`, first the points in order), and the
+/// background beside every one of them, the two ends included (`high`), each once.
+pub(crate) fn side_pixels(points: &[Pixel], first: usize, last: usize) -> (Vec<Pixel>, Vec<Pixel>) {
+    let n = points.len();
+    let inliers: PixelSet = points[first..=last].iter().copied().collect();
+    let (mut low, mut high) = (Vec::new(), Vec::new());
+    let (mut seen_up, mut seen_low) = (PixelSet::default(), PixelSet::default());
+    for k in first..=last {
+        low.push(points[k]);
+        let (prev, next) = (points[(k + n - 1) % n], points[(k + 1) % n]);
+        if let Some(sides) = neighbour_sides(prev, points[k], next) {
+            for (q, right, left) in sides {
+                if inliers.contains(&q) {
+                    continue;
+                }
+                if right && seen_up.insert(q) {
+                    high.push(q);
+                }
+                if left && !right && seen_low.insert(q) {
+                    low.push(q);
                 }
             }
         }
-        Sides { low, high }
     }
+    (low, high)
 }
 
 /// True when the segment `u → v` has every `low` centre strictly on one side of its line
