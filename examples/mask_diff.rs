@@ -5,6 +5,7 @@
 //! `scripts/browser_check.sh` uses it on a Chromium screenshot of layertrace's SVG
 //! (`RENDERED`) against the image it came from (`INPUT`). The two must have the same size;
 //! `DIFF.png` (optional) shows the differences as `--diff` does (missing red, extra blue).
+//! With `LIST=1` in the environment, each differing pixel is printed too (`x y missing|extra`).
 
 use layertrace::{compare, diff_image, load_path, png_bytes, write_atomic, LoadOptions};
 use std::path::PathBuf;
@@ -32,6 +33,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let r = compare(&expected, &actual);
     if let Some(path) = rest.first() {
         write_atomic(path, &png_bytes(&diff_image(&expected, &actual))?)?;
+    }
+    if std::env::var_os("LIST").is_some() {
+        for y in 0..i64::from(expected.height()) {
+            for x in 0..i64::from(expected.width()) {
+                match (expected.get(x, y), actual.get(x, y)) {
+                    (true, false) => eprintln!("{x} {y} missing"),
+                    (false, true) => eprintln!("{x} {y} extra"),
+                    _ => {}
+                }
+            }
+        }
     }
     println!("{} {} {}", r.differing, r.missing, r.extra);
     Ok(())

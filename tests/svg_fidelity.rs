@@ -126,8 +126,10 @@ fn ellipse_distance(p: Point, centre: Point, a: f64, b: f64, theta: f64) -> f64 
 /// them exactly) lie within 0.8 px of the true circle, within 0.55 px for discs decomposed
 /// into a single piece (the former bounds of the exact arcs, 0.75 and 0.5, plus the 1/16 px
 /// grid's snapping, up to 0.045 px, and the cubics' 0.01 px).
-/// Measured: 8 of the 19 discs keep curves (their own arcs where tiny-skia draws them right,
-/// renderer-safe cubics through the exact polygon elsewhere); the rest are exact polygons.
+/// Measured: 3 of the 19 discs keep curves (a curve is kept only where both tiny-skia's chords
+/// and the true curve leave every pixel on its side; 8 kept curves with tiny-skia's check
+/// alone, and Chromium then differed in 36 pixels over the samples instead of 19); the rest
+/// are exact polygons.
 #[test]
 fn disc_curves_match_the_true_circle() {
     let mask = load("syn_discs_r3_to_r200.png");
@@ -153,7 +155,7 @@ fn disc_curves_match_the_true_circle() {
         with_curves += usize::from(!points.is_empty());
     }
     assert!(
-        with_curves >= 8,
+        with_curves >= 3,
         "only {with_curves} of {discs} discs have curves"
     );
 }

@@ -45,7 +45,7 @@ use crate::model::Basis;
 use builder::Builder;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
-use render_check::{misplaced_pixels, nearest_points, points_near, Rendered};
+use render_check::{finely_flattened, misplaced_pixels, nearest_points, points_near, Rendered};
 use smooth::smooth_polygon;
 use stretch::{Drawing, Stretch, Stretcher, Unused};
 
@@ -170,7 +170,14 @@ pub fn contour_path(
                 Rendered::with_margin(c.start, &c.commands, 2)
             });
             let rendered = Rendered::like(path.start, &path.commands, reference);
-            let wrong = misplaced_pixels(reference, &rendered);
+            let mut wrong = misplaced_pixels(reference, &rendered);
+            if wrong.is_empty() {
+                // Exact in tiny-skia; also with the true curves (other renderers).
+                if let Some(fine) = finely_flattened(path.start, &path.commands) {
+                    wrong =
+                        misplaced_pixels(reference, &Rendered::like(path.start, &fine, reference));
+                }
+            }
             if wrong.is_empty() {
                 let mut path = path;
                 if built.smooth.iter().any(|&t| t) {

@@ -172,6 +172,35 @@ fn tiny_path(start: Point, commands: &[PathCommand], dx: f64, dy: f64) -> Option
     pb.finish()
 }
 
+/// Largest distance (pixels) of the polyline [`finely_flattened`] draws to the true curves.
+pub const FINE_FLATTENING: f64 = 0.01;
+
+/// The path with its curves flattened within [`FINE_FLATTENING`]: what a renderer more
+/// precise than tiny-skia draws. A path both this and tiny-skia's chords draw exactly is
+/// drawn exactly by renderers in between (Skia's versions in browsers subdivide curves a
+/// little differently), not only by tiny-skia. `None` when the path has no curve.
+pub(crate) fn finely_flattened(start: Point, commands: &[PathCommand]) -> Option<Vec<PathCommand>> {
+    if commands.iter().all(|c| matches!(c, PathCommand::Line(_))) {
+        return None;
+    }
+    let mut out = Vec::with_capacity(commands.len() * 4);
+    let mut path = kurbo::BezPath::new();
+    path.move_to(start);
+    let mut pen = start;
+    for c in commands {
+        for el in c.to_path_els(pen) {
+            path.push(el);
+        }
+        pen = c.end();
+    }
+    kurbo::flatten(path, FINE_FLATTENING, |el| {
+        if let kurbo::PathEl::LineTo(p) = el {
+            out.push(PathCommand::Line(p));
+        }
+    });
+    Some(out)
+}
+
 /// The pixels that `path` and `reference` paint differently, row by row (rows that agree
 /// are compared as byte slices).
 pub(crate) fn misplaced_pixels(reference: &Rendered, path: &Rendered) -> Vec<Pixel> {

@@ -20,7 +20,7 @@
 //! get more chords); the others go back to their two segments.
 
 use super::builder::Builder;
-use super::render_check::Rendered;
+use super::render_check::{finely_flattened, misplaced_pixels, Rendered};
 use crate::curve::PathCommand;
 use kurbo::{Point, Vec2};
 
@@ -145,7 +145,13 @@ pub(crate) fn smooth_polygon(
         }
         let out = assemble(&merges);
         let rendered = Rendered::like(start, &out, reference);
-        let bad = super::render_check::misplaced_pixels(reference, &rendered);
+        let mut bad = misplaced_pixels(reference, &rendered);
+        if let Some(fine) = finely_flattened(start, &out) {
+            bad.extend(misplaced_pixels(
+                reference,
+                &Rendered::like(start, &fine, reference),
+            ));
+        }
         if bad.is_empty() {
             return out;
         }
