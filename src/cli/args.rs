@@ -68,10 +68,11 @@ pub struct Args {
     #[arg(long, value_name = "PX", default_value_t = 0.05, value_parser = parse_tolerance)]
     pub tolerance: f64,
 
-    /// Draw a piece as its exact polygon (digital straight segments) when its curve passes
-    /// closer than this (pixels, 0 to 10) to a pixel centre: a safety margin for renderers
-    /// other than tiny-skia and Skia. 0 keeps every curve that the tiny-skia check accepts.
-    #[arg(long, value_name = "PX", default_value_t = 0.0, value_parser = parse_clearance)]
+    /// Draw a curve piece as its exact polygon (straight segments) without trying its curve when
+    /// the curve passes closer than this (pixels, 0 to 10) to a pixel centre; larger values
+    /// give more margin for other renderers. Every curve is checked in tiny-skia anyway; 0
+    /// tries them all (the default 1/32 skips those that practically never pass).
+    #[arg(long, value_name = "PX", default_value_t = 1.0 / 32.0, value_parser = parse_clearance)]
     pub min_clearance: f64,
 
     /// Write the pieces and their exact equations as JSON ('-' for standard output).

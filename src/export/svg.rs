@@ -42,10 +42,10 @@ pub struct SvgOptions {
     /// degenerate conics, degree > 2). Default 0.05; values below 0.001 act as 0.001, and
     /// non-finite or non-positive ones as the default.
     pub tolerance: f64,
-    /// A piece whose border curve passes closer than this (pixels) to a pixel centre is
-    /// drawn as its exact polygon without trying the curve: a margin for renderers other
-    /// than tiny-skia and Skia. Default 0: every curve the renderer check accepts is kept.
-    /// Negative or NaN values mean the default.
+    /// A curve piece (not a line) whose border curve passes closer than this (pixels) to a
+    /// pixel centre is drawn as its exact polygon without trying the curve. Default 1/32 (such curves
+    /// practically never pass the render check); 0 tries every curve. Negative or NaN
+    /// values mean the default.
     pub min_clearance: f64,
 }
 
@@ -55,7 +55,7 @@ impl Default for SvgOptions {
             fill: "black".into(),
             grid: OutlineOptions::default().grid,
             tolerance: 0.05,
-            min_clearance: 0.0,
+            min_clearance: crate::outline::DEFAULT_MIN_CLEARANCE,
         }
     }
 }

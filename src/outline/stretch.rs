@@ -127,7 +127,10 @@ impl<'a> Stretcher<'a> {
             .flatten()
             .or_else(|| border_polynomial(basis, self.points, piece, OutlierRule::NotInPiece));
         match border {
-            Some((_, clearance)) if clearance < min_clearance => (s, Some(Unused::Thin)),
+            // (Lines are cheap to check: only curves are sent to their polygon untried.)
+            Some((_, clearance)) if !straight && clearance < min_clearance => {
+                (s, Some(Unused::Thin))
+            }
             Some((poly, clearance)) => {
                 s.poly = Some(poly);
                 s.drawing = if straight {
