@@ -129,8 +129,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}",
                     r.differing, r.missing, r.extra, pct, r.foreground, r.iou
                 );
+                let f = out.fallback_reasons;
                 eprintln!(
-                    "svg: {} bytes, {} commands (M {}, L {}, A {}, Q {}, C {}, Z {}), {} pieces drawn along pixel edges, max fit error {:.3} px",
+                    "svg: {} bytes, {} commands (M {}, L {}, A {}, Q {}, C {}, Z {}), {} curve pieces redrawn as exact polygons, {} stretches along pixel edges, max fit error {:.3} px",
                     out.svg.len(),
                     c.total(),
                     c.move_to,
@@ -139,7 +140,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     c.quad,
                     c.cubic,
                     c.close,
-                    out.fallbacks,
+                    f.rendered + f.curve + f.thin + f.no_polynomial,
+                    f.zero_certificate,
                     out.max_fit_error
                 );
                 let s = staircases(&out.svg)?;
