@@ -214,7 +214,6 @@ pub fn contour_path(
                     // First remedy: bridges back at the shared vertices of the stretches
                     // around `i` (a shared vertex tilts its whole segment).
                     let mut unshared = false;
-                    let m = stretches.len();
                     for q in [i + n - 1, i, i + 1] {
                         let k = holding(q % n);
                         for j in [(k + m - 1) % m, k] {

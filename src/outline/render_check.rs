@@ -26,23 +26,19 @@ impl Rendered {
     /// Fills the closed path `M start commands Z`.
     #[cfg(test)]
     pub(crate) fn new(start: Point, commands: &[PathCommand]) -> Rendered {
-        Rendered::within(start, commands, None)
+        Rendered::within_margin(start, commands, None, 0)
     }
 
     /// [`Rendered::new`] on a window covering `like`'s too (then rows of the two line up,
     /// and [`misplaced_pixels`] compares them as byte slices).
     pub(crate) fn like(start: Point, commands: &[PathCommand], like: &Rendered) -> Rendered {
-        Rendered::within(start, commands, Some(like))
+        Rendered::within_margin(start, commands, Some(like), 0)
     }
 
     /// [`Rendered::new`] with `margin` more pixels round the window (a reference that
     /// paths drawn [`Rendered::like`] it fit in, so that their rows line up).
     pub(crate) fn with_margin(start: Point, commands: &[PathCommand], margin: i64) -> Rendered {
         Rendered::within_margin(start, commands, None, margin)
-    }
-
-    fn within(start: Point, commands: &[PathCommand], like: Option<&Rendered>) -> Rendered {
-        Rendered::within_margin(start, commands, like, 0)
     }
 
     fn within_margin(
