@@ -8,6 +8,9 @@ use std::path::PathBuf;
 #[non_exhaustive]
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
+    /// The command line asks for something impossible (the message says what instead).
+    #[error("{0}")]
+    Arguments(String),
     /// The input file could not be read.
     #[error("cannot read {path}: {source}")]
     Read {

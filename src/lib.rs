@@ -1,7 +1,25 @@
 //! layertrace: bitmap to SVG with exact curves, by Digital Level Layers.
 //!
+//! One call does it all: [`vectorize`] reads an image (a file, encoded bytes or a [`Mask`]),
+//! and returns the SVG, the decomposition with the exact equation of every piece, and on
+//! request the fidelity check, the JSON and a picture of the pieces ([`Options`] says which).
+//!
+//! ```
+//! use layertrace::{vectorize, Model, Options};
+//!
+//! let options = Options::default().model(Model::Conic).fidelity(true);
+//! let out = vectorize(std::path::Path::new("samples/glyph_g_liberationserif_cap120.png"), &options)?;
+//! std::fs::write(std::env::temp_dir().join("g.svg"), out.svg_text()).unwrap();
+//!
+//! // What resvg draws of the SVG is the input's mask, pixel for pixel.
+//! assert_eq!(out.fidelity.unwrap().report.differing, 0);
+//! println!("{} pieces", out.decomposition.piece_count());
+//! # Ok::<(), layertrace::Error>(())
+//! ```
+//!
 //! Implements *Digital Level Layers for Digital Curve Decomposition and Vectorization*
-//! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014). Data flows through the stages in order:
+//! (L. Provot, Y. Gérard, F. Feschet, IPOL 2014). Data flows through the stages in order,
+//! each callable on its own:
 //! [`load_path`] (image → foreground [`Mask`]), [`trace`] (borders as 8-connected pixel
 //! paths), [`decompose`] (greedy pieces, each with an exact [`Certificate`] from the
 //! [`Recognizer`]), then [`decomposition_json`], [`decomposition_picture`] and
@@ -52,6 +70,11 @@ mod outline;
 mod output;
 mod pixel;
 mod recognize;
+mod vectorize;
+
+pub use vectorize::{
+    vectorize, Fidelity, Options, Progress, ProgressFn, Source, Stage, Vectorized,
+};
 
 pub use bitmap::{
     default_max_memory, load_memory, load_path, parse_memory_size, threshold_image, Compat,

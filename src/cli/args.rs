@@ -11,6 +11,7 @@ Examples:
   layertrace samples/glyph_g_liberationserif_cap120.png --json g.json --decomposition g.png
   cat scan.png | layertrace - --model circle --threshold otsu --json -
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
+  layertrace scans/ logo.png --out-dir svg/ --model circle
 
 Output files:
   Every output is checked before any work starts (its directory writable, not the input
@@ -34,13 +35,21 @@ Exit codes:
 #[derive(Parser, Debug)]
 #[command(name = "layertrace", version, about, after_help = AFTER_HELP)]
 pub struct Args {
-    /// Input image (PNG, BMP, PNM/PBM, TIFF, GIF, JPEG, WebP); '-' reads standard input.
-    pub input: PathBuf,
+    /// Input images (PNG, BMP, PNM/PBM, TIFF, GIF, JPEG, WebP), or folders of them (their
+    /// image files, by extension, in name order); '-' reads standard input.
+    #[arg(required = true, value_name = "INPUT")]
+    pub inputs: Vec<PathBuf>,
 
     /// Write the SVG ('-' for standard output): one path, lines, exact circular and
     /// elliptic arcs, parabolas as quadratic Béziers, other curves as fitted cubics.
     #[arg(short, long, value_name = "OUT.svg")]
     pub output: Option<PathBuf>,
+
+    /// Write each input's SVG into DIR as NAME.svg (NAME: the input's file name without its
+    /// extension; DIR is created if missing). Inputs are processed in parallel; a failed
+    /// input is named on standard error, the others are still written, and the exit code is 1.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["output", "json", "decomposition", "diff"])]
+    pub out_dir: Option<PathBuf>,
 
     /// Render the SVG back as `resvg --shape-rendering crispEdges` does and report on
     /// standard error: differing pixels, IoU, path commands by type, SVG size, pixel
@@ -48,8 +57,8 @@ pub struct Args {
     #[arg(long)]
     pub report: bool,
 
-    /// Write the round-trip differences as PNG: the input's foreground mask black on white,
-    /// missing pixels red, extra pixels blue.
+    /// Write the round-trip differences as PNG: the foreground mask (the input after
+    /// thresholding) black on white, missing pixels red, extra pixels blue.
     #[arg(long, value_name = "FILE.png")]
     pub diff: Option<PathBuf>,
 
@@ -127,11 +136,14 @@ pub struct Args {
 }
 
 fn parse_model(s: &str) -> Result<Model, String> {
-    let m: Model = s.parse().map_err(|e| format!("{e}"))?;
-    if matches!(m, Model::Quadric3 | Model::Poly3(_)) {
-        return Err("3D models apply to point sets, not to images".into());
+    const IMAGE_MODELS: &str = "line, circle, conic or poly:D (D = 1..=6)";
+    match s.parse::<Model>() {
+        Ok(Model::Quadric3 | Model::Poly3(_)) => Err(format!(
+            "'{s}' is a model of 3-D point sets; images take {IMAGE_MODELS}"
+        )),
+        Ok(m) => Ok(m),
+        Err(_) => Err(format!("unknown model '{s}': expected {IMAGE_MODELS}")),
     }
-    Ok(m)
 }
 
 /// A finite number in `lo..=hi`.

@@ -4,6 +4,8 @@
 //! arguments made from fuzz bytes.
 
 mod args;
+mod batch;
+mod progress;
 mod run;
 
 use clap::Parser;
@@ -26,7 +28,8 @@ pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
     };
     install_signal_handlers();
     match run::run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
         Err(e) => {
             eprintln!("layertrace: {e}");
             ExitCode::from(exit_code(&e))
@@ -37,7 +40,7 @@ pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
 /// 2 for what the command line got wrong, 1 for everything else.
 fn exit_code(e: &Error) -> u8 {
     match e {
-        Error::SameOutput { .. } => 2,
+        Error::SameOutput { .. } | Error::Arguments(_) => 2,
         _ => 1,
     }
 }

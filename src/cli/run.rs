@@ -1,22 +1,137 @@
-//! One run of the tool: check the outputs, load, decompose, export, commit, report.
+//! One run of the tool: one input with its named outputs, or many inputs into a folder.
 
 use super::args::Args;
+use super::batch;
+use super::progress::Bar;
 use layertrace::{
-    compare, decompose, decomposition_json, decomposition_picture, default_scale, diff_image,
-    load_path, piece_kind, png_bytes, rasterize_svg, staircases, svg_document, trace,
-    work_estimate, Basis, Compat, Contour, Convention, CurveKind, Error, JsonHeader, LoadOptions,
-    Mask, OutlierRule, OutputSet, SvgOptions, Threshold,
+    diff_image, png_bytes, staircases, vectorize, Basis, Compat, CurveKind, Error, Options,
+    OutputSet, Progress, Stage, SvgOptions, Vectorized,
 };
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
-/// Runs the tool once. Every output is checked before the input is read and put in place
-/// only when everything succeeded.
-pub fn run(args: &Args) -> Result<(), Error> {
+/// The outputs of one input.
+#[derive(Clone, Debug, Default)]
+pub struct Outputs {
+    /// The SVG.
+    pub svg: Option<PathBuf>,
+    /// The JSON of the decomposition.
+    pub json: Option<PathBuf>,
+    /// The decomposition picture.
+    pub picture: Option<PathBuf>,
+    /// The round-trip differences.
+    pub diff: Option<PathBuf>,
+}
+
+/// Runs the tool. Returns whether every input succeeded; an error that stops the whole run
+/// (bad outputs, or the only input failing) is returned as such.
+pub fn run(args: &Args) -> Result<bool, Error> {
+    let pool = match args.threads {
+        // The main thread is one of the workers: with one thread, none is spawned and no
+        // work is handed between threads.
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .use_current_thread()
+            .build()
+            .ok()
+            .map(Arc::new),
+        None => None,
+    };
+    match &args.out_dir {
+        None => {
+            let input = batch::single_input(args)?;
+            let outputs = Outputs {
+                svg: args.output.clone(),
+                json: args.json.clone(),
+                picture: args.decomposition.clone(),
+                diff: args.diff.clone(),
+            };
+            let mut options = options(args, &outputs, pool);
+            let bar = Arc::new(Bar::new(0, "contours", args.quiet));
+            let b = bar.clone();
+            options.progress = Some(Arc::new(move |p: Progress| {
+                let stage = match p.stage {
+                    Stage::Decompose => "decomposed",
+                    _ => "drawn",
+                };
+                b.set(p.done, p.total, stage);
+            }));
+            let done = one(args, &input, &outputs, &options);
+            bar.finish();
+            let text = done?.text(args.quiet);
+            if !text.is_empty() {
+                eprintln!("{text}");
+            }
+            Ok(true)
+        }
+        Some(dir) => batch::run(args, dir, pool),
+    }
+}
+
+/// The library options for `args`, asking for what `outputs` needs.
+pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPool>>) -> Options {
+    let mut o = Options::default()
+        .model(args.model)
+        .invert(args.invert)
+        .max_pixels(args.max_pixels)
+        .max_memory(
+            args.max_memory
+                .unwrap_or_else(layertrace::default_max_memory),
+        )
+        .compat(if args.compat.is_some() {
+            Compat::Ipol
+        } else {
+            Compat::Default
+        })
+        .fidelity(args.report || outputs.diff.is_some())
+        .json(outputs.json.is_some());
+    o.threshold = args.threshold;
+    o.svg = (outputs.svg.is_some() || args.report || outputs.diff.is_some()).then(|| SvgOptions {
+        fill: args.fill.clone(),
+        grid: args.grid,
+        tolerance: args.tolerance,
+        min_clearance: args.min_clearance,
+    });
+    if outputs.picture.is_some() {
+        o.picture = Some(args.scale);
+    }
+    o.pool = pool;
+    o
+}
+
+/// What one input printed: its `--report` lines ("" without `--report`), its summary line.
+#[derive(Clone, Debug)]
+pub struct Finished {
+    /// The `--report` lines, each ending in a newline.
+    pub report: String,
+    /// The summary line (no newline).
+    pub summary: String,
+}
+
+impl Finished {
+    /// The report, and the summary unless `quiet`.
+    pub fn text(&self, quiet: bool) -> String {
+        let mut s = self.report.clone();
+        if !quiet {
+            s.push_str(&self.summary);
+        }
+        s.trim_end().to_string()
+    }
+}
+
+/// Vectorizes `input` and writes its outputs, whole or not at all: every output is checked
+/// before the input is read and put in place only when everything succeeded.
+pub fn one(
+    args: &Args,
+    input: &Path,
+    outputs: &Outputs,
+    options: &Options,
+) -> Result<Finished, Error> {
     let start = Instant::now();
-    let stdin = args.input == Path::new("-");
-    let mut outs = OutputSet::new((!stdin).then_some(args.input.as_path()));
+    let stdin = input == Path::new("-");
+    let mut outs = OutputSet::new((!stdin).then_some(input));
     let mut named: Vec<(&str, PathBuf)> = Vec::new();
     let mut add = |flag: &'static str, path: Option<&PathBuf>| -> Result<_, Error> {
         let Some(path) = path else { return Ok(None) };
@@ -34,203 +149,146 @@ pub fn run(args: &Args) -> Result<(), Error> {
         named.push((flag, path.clone()));
         Ok(Some(id))
     };
-    let svg_out = add("-o", args.output.as_ref())?;
-    let json_out = add("--json", args.json.as_ref())?;
-    let picture_out = add("--decomposition", args.decomposition.as_ref())?;
-    let diff_out = add("--diff", args.diff.as_ref())?;
+    let svg_out = add("-o", outputs.svg.as_ref())?;
+    let json_out = add("--json", outputs.json.as_ref())?;
+    let picture_out = add("--decomposition", outputs.picture.as_ref())?;
+    let diff_out = add("--diff", outputs.diff.as_ref())?;
 
-    if let Some(n) = args.threads {
-        // The main thread is one of the workers: with one thread, none is spawned and no
-        // work is handed between threads. Fails only if a pool exists already (a second run
-        // in one process keeps the first pool).
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .use_current_thread()
-            .build_global();
+    let v = vectorize(input, options)?;
+    if let (Some(id), Some(json)) = (json_out, &v.json) {
+        outs.write(id, json.clone().into_bytes())?;
     }
-    let ipol = args.compat.is_some();
-    let opts = LoadOptions {
-        threshold: args.threshold.unwrap_or(if ipol {
-            Threshold::Otsu
-        } else {
-            Threshold::Fixed(128)
-        }),
-        invert: args.invert,
-        compat: if ipol { Compat::Ipol } else { Compat::Default },
-        max_pixels: args.max_pixels,
-        max_memory: args
-            .max_memory
-            .unwrap_or_else(layertrace::default_max_memory),
-    };
-    let loaded = load_path(&args.input, &opts)?;
-    let mask = &loaded.mask;
-    let (convention, rule) = if ipol {
-        (Convention::Ipol, OutlierRule::Any)
-    } else {
-        (Convention::Default, OutlierRule::NotInPiece)
-    };
-    let contours = trace(mask, convention);
-    check_memory(args, &contours, mask, opts.max_memory)?;
-    let d = decompose(contours, args.model, rule);
-
-    if let Some(id) = json_out {
-        let header = JsonHeader {
-            width: mask.width(),
-            height: mask.height(),
-            threshold: loaded.threshold,
-            invert: args.invert,
-        };
-        outs.write(id, decomposition_json(&d, &header).into_bytes())?;
+    if let (Some(id), Some(png)) = (picture_out, &v.picture) {
+        outs.write(id, png.clone())?;
     }
-    if let (Some(id), Some(path)) = (picture_out, &args.decomposition) {
-        let scale = args
-            .scale
-            .unwrap_or_else(|| default_scale(mask.width(), mask.height()));
-        let img = decomposition_picture(mask, &d, scale, args.max_pixels.max(1 << 24)).ok_or(
-            Error::PictureTooLarge {
+    if let (Some(id), Some(path), Some(f)) = (diff_out, &outputs.diff, &v.fidelity) {
+        let bytes =
+            png_bytes(&diff_image(&v.mask, &f.rendered)).map_err(|source| Error::Encode {
                 path: path.clone(),
-                scale,
-            },
-        )?;
-        let bytes = png_bytes(&img).map_err(|source| Error::Encode {
-            path: path.clone(),
-            source,
-        })?;
+                source,
+            })?;
         outs.write(id, bytes)?;
     }
-
-    if svg_out.is_some() || args.report || diff_out.is_some() {
-        let opts = SvgOptions {
-            fill: args.fill.clone(),
-            grid: args.grid,
-            tolerance: args.tolerance,
-            min_clearance: args.min_clearance,
-        };
-        let out = svg_document(&d, mask.width(), mask.height(), &opts);
-        if args.report || diff_out.is_some() {
-            let actual = rasterize_svg(&out.svg, mask.width(), mask.height())?;
-            let r = compare(mask, &actual);
-            if let (Some(id), Some(path)) = (diff_out, &args.diff) {
-                let bytes =
-                    png_bytes(&diff_image(mask, &actual)).map_err(|source| Error::Encode {
-                        path: path.clone(),
-                        source,
-                    })?;
-                outs.write(id, bytes)?;
-            }
-            if args.report {
-                let c = out.commands;
-                let pct = if r.foreground > 0 {
-                    100.0 * r.differing as f64 / r.foreground as f64
-                } else {
-                    0.0
-                };
-                eprintln!(
-                    "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}",
-                    r.differing, r.missing, r.extra, pct, r.foreground, r.iou
-                );
-                let f = out.fallback_reasons;
-                eprintln!(
-                    "svg: {} bytes, {} commands (M {}, L {}, A {}, Q {}, C {}, Z {}), {} curve pieces redrawn as exact polygons, {} stretches along pixel edges, max fit error {:.3} px",
-                    out.svg.len(),
-                    c.total(),
-                    c.move_to,
-                    c.line,
-                    c.arc,
-                    c.quad,
-                    c.cubic,
-                    c.close,
-                    f.rendered + f.curve + f.thin + f.no_polynomial,
-                    f.zero_certificate,
-                    out.max_fit_error
-                );
-                let s = staircases(&out.svg)?;
-                eprintln!(
-                    "staircases: {} runs, {} segments in runs (of {} straight segments)",
-                    s.runs, s.segments, s.lines
-                );
-            }
-        }
-        if let Some(id) = svg_out {
-            outs.write(id, out.svg.into_bytes())?;
-        }
+    let report = if args.report {
+        report(&v)?
+    } else {
+        String::new()
+    };
+    if let (Some(id), Some(svg)) = (svg_out, &v.svg) {
+        outs.write(id, svg.svg.clone().into_bytes())?;
     }
     outs.commit()?;
-
-    if !args.quiet {
-        let basis = d.model.basis();
-        let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
-        for p in d.pieces.iter().flatten() {
-            let k: CurveKind = piece_kind(&basis as &dyn Basis, &p.certificate);
-            *kinds.entry(k.name()).or_default() += 1;
-        }
-        let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{k} {n}")).collect();
-        let kinds = if kinds.is_empty() {
-            String::new()
-        } else {
-            format!(" ({})", kinds.join(", "))
-        };
-        let holes = d.contours.iter().filter(|c| c.hole).count();
-        let name = if stdin {
-            "<stdin>".into()
-        } else {
-            args.input.display().to_string()
-        };
-        eprintln!(
-            "{}: {}x{}, {} contours ({} holes), {} pieces{}, model {}, {:.1} ms",
-            name,
-            mask.width(),
-            mask.height(),
-            d.contours.len(),
-            holes,
-            d.piece_count(),
-            kinds,
-            d.model,
-            start.elapsed().as_secs_f64() * 1e3
-        );
-    }
-    Ok(())
+    let name = if stdin {
+        "<stdin>".into()
+    } else {
+        input.display().to_string()
+    };
+    Ok(Finished {
+        report,
+        summary: summary(&name, &v, options, start),
+    })
 }
 
-/// Refuses a run whose work after tracing would need more than `limit` bytes, before it
-/// allocates anything: the decomposition, and what the asked outputs need on top of it.
-fn check_memory(args: &Args, contours: &[Contour], mask: &Mask, limit: u64) -> Result<(), Error> {
-    let (w, h) = (mask.width(), mask.height());
-    let e = work_estimate(contours, args.model, w, h, rayon::current_num_threads());
-    let mut needed = e.contours + e.decomposition;
-    let svg = args.output.is_some() || args.report || args.diff.is_some();
-    if svg {
-        let check = args.report || args.diff.is_some();
-        needed += e.svg_document
-            + if check {
-                e.svg_drawing.max(e.fidelity)
-            } else {
-                e.svg_drawing
-            };
+/// The `--report` lines: fidelity, the SVG's commands, staircases.
+fn report(v: &Vectorized) -> Result<String, Error> {
+    let (Some(out), Some(f)) = (&v.svg, &v.fidelity) else {
+        return Ok(String::new());
+    };
+    let r = f.report;
+    let pct = if r.foreground > 0 {
+        100.0 * r.differing as f64 / r.foreground as f64
+    } else {
+        0.0
+    };
+    let mut text = format!(
+        "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}\n",
+        r.differing, r.missing, r.extra, pct, r.foreground, r.iou
+    );
+    let c = out.commands;
+    let fb = out.fallback_reasons;
+    text += &format!(
+        "svg: {} bytes, {} commands (M {}, L {}, A {}, Q {}, C {}, Z {}), {} redrawn as exact polygons, {} along pixel edges, max fit error {:.3} px\n",
+        out.svg.len(),
+        c.total(),
+        c.move_to,
+        c.line,
+        c.arc,
+        c.quad,
+        c.cubic,
+        c.close,
+        count(
+            fb.rendered + fb.curve + fb.thin + fb.no_polynomial,
+            "curve piece",
+            "curve pieces"
+        ),
+        count(fb.zero_certificate, "stretch", "stretches"),
+        out.max_fit_error
+    );
+    let s = staircases(&out.svg)?;
+    text += &format!(
+        "staircases: {} runs, {} segments in runs (of {} straight segments)\n",
+        s.runs, s.segments, s.lines
+    );
+    Ok(text)
+}
+
+/// `n` and the noun, singular or plural.
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// The summary line: size, contours, pieces by kind, model, threshold, time.
+pub fn summary(name: &str, v: &Vectorized, options: &Options, start: Instant) -> String {
+    let d = &v.decomposition;
+    let basis = d.model.basis();
+    let mut kinds: BTreeMap<CurveKind, usize> = BTreeMap::new();
+    for p in d.pieces.iter().flatten() {
+        let k = layertrace::piece_kind(&basis as &dyn Basis, &p.certificate);
+        *kinds.entry(k).or_default() += 1;
     }
-    if args.json.is_some() {
-        // The JSON text: measured at most 160 bytes per contour point (a one-pixel
-        // checkerboard, every contour a single piece), doubled for the string's growth.
-        let points: u64 = contours.iter().map(|c| c.points.len() as u64).sum();
-        needed += 2 * 160 * (points + contours.len() as u64);
-    }
-    if args.decomposition.is_some() {
-        // A picture over decomposition_picture's own bound is refused there, not drawn.
-        let k = u64::from(args.scale.unwrap_or_else(|| default_scale(w, h)));
-        let pixels = u64::from(w) * k * u64::from(h) * k;
-        needed += 3 * pixels.min(args.max_pixels.max(1 << 24));
-    }
-    if needed > limit {
-        let path = if args.input == Path::new("-") {
-            PathBuf::from("<stdin>")
+    let kinds: Vec<String> = kinds
+        .iter()
+        .map(|(k, &n)| {
+            let (one, many) = kind_nouns(*k);
+            count(n, one, many)
+        })
+        .collect();
+    let kinds = if kinds.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", kinds.join(", "))
+    };
+    let holes = d.contours.iter().filter(|c| c.hole).count();
+    let threshold = match options.effective_threshold() {
+        layertrace::Threshold::Otsu => format!("threshold {} (Otsu)", v.threshold),
+        _ => format!("threshold {}", v.threshold),
+    };
+    format!(
+        "{name}: {}x{}, {} ({}), {}{kinds}, model {}, {threshold}{}, {:.1} ms",
+        v.mask.width(),
+        v.mask.height(),
+        count(d.contours.len(), "contour", "contours"),
+        if holes == 0 {
+            "no holes".to_string()
         } else {
-            args.input.clone()
-        };
-        return Err(Error::NeedsMemory {
-            path,
-            needed,
-            limit,
-        });
+            count(holes, "hole", "holes")
+        },
+        count(d.piece_count(), "piece", "pieces"),
+        d.model,
+        if options.invert { ", inverted" } else { "" },
+        start.elapsed().as_secs_f64() * 1e3
+    )
+}
+
+/// What the summary calls pieces of each kind (singular, plural).
+fn kind_nouns(k: CurveKind) -> (&'static str, &'static str) {
+    match k {
+        CurveKind::Line => ("line", "lines"),
+        CurveKind::Circle => ("circular arc", "circular arcs"),
+        CurveKind::Ellipse => ("elliptic arc", "elliptic arcs"),
+        CurveKind::Parabola => ("parabolic arc", "parabolic arcs"),
+        CurveKind::Hyperbola => ("hyperbolic arc", "hyperbolic arcs"),
+        CurveKind::Degenerate => ("degenerate conic", "degenerate conics"),
+        _ => ("polynomial curve", "polynomial curves"),
     }
-    Ok(())
 }

@@ -4,7 +4,7 @@
 /// [`Conic::classify`](super::Conic::classify) finds it, and of a piece's level curve, as
 /// [`curve_kind`](crate::curve_kind) and [`piece_kind`](crate::piece_kind) report it in the
 /// JSON output and the CLI summary (see [`CurveKind::name`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum CurveKind {
     /// A straight line. As a conic: no quadratic part, `d x + e y + f = 0` with
     /// `(d, e) ≠ 0`.

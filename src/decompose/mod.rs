@@ -33,6 +33,7 @@ use crate::model::{Basis, Model};
 use crate::pixel::{Pixel, PixelMap, PixelSet};
 use crate::recognize::{Certificate, Outcome, Recognizer, Side, Stats};
 use rayon::prelude::*;
+use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
 mod budget;
@@ -292,6 +293,19 @@ pub fn decompose_within(
     rule: OutlierRule,
     budget: WorkBudget,
 ) -> Decomposition {
+    decompose_reporting(contours, model, rule, budget, &|_| {})
+}
+
+/// [`decompose_within`], calling `done` with the number of contours decomposed so far after
+/// each chunk of them (from the worker threads).
+pub(crate) fn decompose_reporting(
+    contours: Vec<Contour>,
+    model: Model,
+    rule: OutlierRule,
+    budget: WorkBudget,
+    done: &(dyn Fn(usize) + Sync),
+) -> Decomposition {
+    let finished = std::sync::atomic::AtomicUsize::new(0);
     let basis: Arc<dyn Basis> = Arc::new(model.basis());
     let results: Vec<(Vec<Vec<Piece>>, Stats)> = contours
         .par_chunks(CONTOURS_PER_TASK)
@@ -304,6 +318,8 @@ pub fn decompose_within(
                         .iter()
                         .map(|c| decompose_points_within(&c.points, rec, rule, budget))
                         .collect();
+                    let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
+                    done(n);
                     (pieces, rec.stats().since(&before))
                 }
                 None => (vec![Vec::new(); chunk.len()], Stats::default()),

@@ -190,6 +190,18 @@ fn xml_escape(v: &str) -> String {
 /// `fill-rule="nonzero"`, outer borders counter-clockwise, holes clockwise, width, height
 /// and viewBox the image size in pixels.
 pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOptions) -> SvgOutput {
+    svg_document_reporting(d, width, height, opts, &|_| {})
+}
+
+/// [`svg_document`], calling `done` with the number of contours drawn so far after each
+/// group of them.
+pub(crate) fn svg_document_reporting(
+    d: &Decomposition,
+    width: u32,
+    height: u32,
+    opts: &SvgOptions,
+    done: &(dyn Fn(usize) + Sync),
+) -> SvgOutput {
     let basis = d.model.basis();
     let grid = opts.grid.min(MAX_GRID);
     // Multiples of 2^-grid have at most `grid` decimals: written exactly.
@@ -233,6 +245,7 @@ pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOption
                 (data, counts, cp)
             })
             .collect();
+        done(g * CONTOURS_PER_GROUP + group.len());
         for (data, counts, cp) in parts {
             commands.add(&counts);
             fallbacks.add(&cp.fallbacks);

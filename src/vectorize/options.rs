@@ -1,0 +1,228 @@
+//! What [`vectorize`](crate::vectorize) does: the model, the threshold, which outputs,
+//! the limits, and where the work runs.
+
+use std::fmt;
+use std::sync::Arc;
+
+use crate::bitmap::{default_max_memory, Compat, Threshold};
+use crate::decompose::WorkBudget;
+use crate::export::svg::SvgOptions;
+use crate::model::Model;
+
+/// A stage of [`vectorize`](crate::vectorize) whose progress is reported.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Decomposing the contours into pieces.
+    Decompose,
+    /// Drawing the contours into the SVG.
+    Draw,
+}
+
+/// Progress of one stage: `done` of `total` contours.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    /// The stage.
+    pub stage: Stage,
+    /// Contours done so far.
+    pub done: u64,
+    /// Contours in all.
+    pub total: u64,
+}
+
+/// A callback told of progress, from any worker thread, a few hundred times per stage at most.
+pub type ProgressFn = Arc<dyn Fn(Progress) + Send + Sync>;
+
+/// Options of [`vectorize`](crate::vectorize), built from [`Options::default`] (the CLI's
+/// defaults: conic model, threshold 128, an SVG, nothing else) with the builder methods:
+///
+/// ```
+/// use layertrace::{Model, Options, Threshold};
+/// let options = Options::default()
+///     .model(Model::Circle)
+///     .threshold(Threshold::Otsu)
+///     .fill("#1a237e")
+///     .fidelity(true);
+/// assert_eq!(options.model, Model::Circle);
+/// ```
+#[non_exhaustive]
+#[derive(Clone)]
+pub struct Options {
+    /// The family of curves. Default [`Model::Conic`].
+    pub model: Model,
+    /// How grey levels become foreground; `None` is `Fixed(128)`, or Otsu with
+    /// [`Compat::Ipol`]. Ignored for a [`Mask`](crate::Mask) input.
+    pub threshold: Option<Threshold>,
+    /// Light foreground on a dark background. Ignored for a mask input.
+    pub invert: bool,
+    /// Whose conventions: layertrace's, or the IPOL reference program's (grey levels,
+    /// 4-connected objects, crack-following borders, outliers of any colour).
+    pub compat: Compat,
+    /// The SVG's options; `None` draws no SVG (and checks no fidelity).
+    pub svg: Option<SvgOptions>,
+    /// Render the SVG back with resvg and compare it with the mask.
+    pub fidelity: bool,
+    /// Write the decomposition's JSON text.
+    pub json: bool,
+    /// Draw the decomposition picture at this enlargement (`Some(None)`: about 800 pixels
+    /// wide); `None` draws none.
+    pub picture: Option<Option<u32>>,
+    /// Refuse images with more pixels than this (before decoding). Default 400 million.
+    pub max_pixels: u64,
+    /// Refuse inputs whose work would need more bytes than this (before decoding, and again
+    /// after tracing). Default [`default_max_memory`].
+    pub max_memory: u64,
+    /// The work budget of each piece's recognition.
+    pub budget: WorkBudget,
+    /// Run on this thread pool instead of rayon's global one.
+    pub pool: Option<Arc<rayon::ThreadPool>>,
+    /// Told of the progress of the long stages.
+    pub progress: Option<ProgressFn>,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            model: Model::Conic,
+            threshold: None,
+            invert: false,
+            compat: Compat::Default,
+            svg: Some(SvgOptions::default()),
+            fidelity: false,
+            json: false,
+            picture: None,
+            max_pixels: 400_000_000,
+            max_memory: default_max_memory(),
+            budget: WorkBudget::default(),
+            pool: None,
+            progress: None,
+        }
+    }
+}
+
+impl fmt::Debug for Options {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Options")
+            .field("model", &self.model)
+            .field("threshold", &self.threshold)
+            .field("invert", &self.invert)
+            .field("compat", &self.compat)
+            .field("svg", &self.svg)
+            .field("fidelity", &self.fidelity)
+            .field("json", &self.json)
+            .field("picture", &self.picture)
+            .field("max_pixels", &self.max_pixels)
+            .field("max_memory", &self.max_memory)
+            .field("budget", &self.budget)
+            .field("pool", &self.pool.as_ref().map(|p| p.current_num_threads()))
+            .field("progress", &self.progress.is_some())
+            .finish()
+    }
+}
+
+impl Options {
+    /// The family of curves.
+    pub fn model(mut self, model: Model) -> Options {
+        self.model = model;
+        self
+    }
+
+    /// How grey levels become foreground.
+    pub fn threshold(mut self, threshold: Threshold) -> Options {
+        self.threshold = Some(threshold);
+        self
+    }
+
+    /// Light foreground on a dark background.
+    pub fn invert(mut self, invert: bool) -> Options {
+        self.invert = invert;
+        self
+    }
+
+    /// Whose conventions (see [`Compat`]).
+    pub fn compat(mut self, compat: Compat) -> Options {
+        self.compat = compat;
+        self
+    }
+
+    /// The SVG's options (drawing an SVG).
+    pub fn svg(mut self, svg: SvgOptions) -> Options {
+        self.svg = Some(svg);
+        self
+    }
+
+    /// No SVG (only the decomposition, and the JSON or the picture if asked).
+    pub fn no_svg(mut self) -> Options {
+        self.svg = None;
+        self
+    }
+
+    /// The SVG's fill colour (drawing an SVG).
+    pub fn fill(mut self, fill: impl Into<String>) -> Options {
+        self.svg.get_or_insert_with(SvgOptions::default).fill = fill.into();
+        self
+    }
+
+    /// The SVG's coordinate grid, 1/2^`grid` px (drawing an SVG).
+    pub fn grid(mut self, grid: u8) -> Options {
+        self.svg.get_or_insert_with(SvgOptions::default).grid = grid;
+        self
+    }
+
+    /// Render the SVG back and compare it with the mask.
+    pub fn fidelity(mut self, fidelity: bool) -> Options {
+        self.fidelity = fidelity;
+        self
+    }
+
+    /// Write the decomposition's JSON text.
+    pub fn json(mut self, json: bool) -> Options {
+        self.json = json;
+        self
+    }
+
+    /// Draw the decomposition picture (`None`: about 800 pixels wide).
+    pub fn picture(mut self, scale: Option<u32>) -> Options {
+        self.picture = Some(scale);
+        self
+    }
+
+    /// Refuse images with more pixels than this.
+    pub fn max_pixels(mut self, max_pixels: u64) -> Options {
+        self.max_pixels = max_pixels;
+        self
+    }
+
+    /// Refuse inputs whose work would need more bytes than this.
+    pub fn max_memory(mut self, max_memory: u64) -> Options {
+        self.max_memory = max_memory;
+        self
+    }
+
+    /// The work budget of each piece's recognition.
+    pub fn budget(mut self, budget: WorkBudget) -> Options {
+        self.budget = budget;
+        self
+    }
+
+    /// Run on this thread pool.
+    pub fn pool(mut self, pool: Arc<rayon::ThreadPool>) -> Options {
+        self.pool = Some(pool);
+        self
+    }
+
+    /// Tell `progress` how the long stages advance.
+    pub fn progress(mut self, progress: ProgressFn) -> Options {
+        self.progress = Some(progress);
+        self
+    }
+
+    /// The threshold used on grey levels: the given one, else 128, or Otsu's with
+    /// [`Compat::Ipol`].
+    pub fn effective_threshold(&self) -> Threshold {
+        self.threshold.unwrap_or(match self.compat {
+            Compat::Ipol => Threshold::Otsu,
+            _ => Threshold::Fixed(128),
+        })
+    }
+}
