@@ -101,7 +101,7 @@ fn default_budget_cuts_poly6_on_noise_and_certificates_hold() {
         .as_array()
         .unwrap()
         .iter()
-        .flat_map(|c| c["segments"].as_array().unwrap())
+        .flat_map(|c| c["pieces"].as_array().unwrap())
         .filter(|s| s["cut"] == "budget")
         .count();
     assert_eq!(cut_in_json, cuts);

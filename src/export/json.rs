@@ -1,11 +1,11 @@
-//! The decomposition as JSON (`layertrace-decomposition/1`): contours, pieces, equations.
+//! The decomposition as JSON (`layertrace-decomposition/2`): contours, pieces, equations.
 //!
 //! ```text
-//! {"format": "layertrace-decomposition/1", "width": W, "height": H,
+//! {"format": "layertrace-decomposition/2", "width": W, "height": H,
 //!  "threshold": 128, "invert": false, "model": "conic",
 //!  "basis": ["x^2","x*y","y^2","x","y","1"],
 //!  "contours": [{"hole": false, "points": [[x,y], ...],
-//!                "segments": [{"first": 0, "last": 17, "origin": [x0,y0],
+//!                "pieces": [{"first": 0, "last": 17, "origin": [x0,y0],
 //!                              "coefficients": [...], "lower": l, "upper": u,
 //!                              "kind": "ellipse"}]}]}
 //! ```
@@ -53,7 +53,7 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
     // Writing to a String cannot fail.
     let _ = write!(
         s,
-        "{{\"format\": \"layertrace-decomposition/1\", \"width\": {}, \"height\": {},\n \"threshold\": {}, \"invert\": {}, \"model\": {},\n \"basis\": [{}],\n \"contours\": [",
+        "{{\"format\": \"layertrace-decomposition/2\", \"width\": {}, \"height\": {},\n \"threshold\": {}, \"invert\": {}, \"model\": {},\n \"basis\": [{}],\n \"contours\": [",
         header.width,
         header.height,
         header.threshold,
@@ -72,7 +72,7 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
             }
             let _ = write!(s, "[{},{}]", p.x, p.y);
         }
-        s.push_str("],\n   \"segments\": [");
+        s.push_str("],\n   \"pieces\": [");
         for (k, p) in pieces.iter().enumerate() {
             if k > 0 {
                 s.push_str(",\n    ");
@@ -155,7 +155,7 @@ mod tests {
             };
             let text = decomposition_json(&d, &header);
             let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
-            assert_eq!(v["format"], "layertrace-decomposition/1");
+            assert_eq!(v["format"], "layertrace-decomposition/2");
             assert_eq!(
                 v["basis"].as_array().unwrap().len(),
                 model.basis().dim() + 1
@@ -165,7 +165,7 @@ mod tests {
             assert_eq!(contours.iter().filter(|c| c["hole"] == true).count(), 1);
             let basis = model.basis();
             for (c, cj) in d.contours.iter().zip(contours) {
-                for seg in cj["segments"].as_array().unwrap() {
+                for seg in cj["pieces"].as_array().unwrap() {
                     let first = seg["first"].as_u64().unwrap() as usize;
                     let last = seg["last"].as_u64().unwrap() as usize;
                     let o: Vec<i64> = seg["origin"]

@@ -95,7 +95,7 @@ pub struct Vectorized {
     pub svg: Option<SvgOutput>,
     /// The SVG rendered back and compared, if [`Options::fidelity`] and an SVG were asked.
     pub fidelity: Option<Fidelity>,
-    /// The decomposition as JSON (format `layertrace-decomposition/1`), if asked.
+    /// The decomposition as JSON (format `layertrace-decomposition/2`), if asked.
     pub json: Option<String>,
     /// The decomposition picture as PNG bytes, if asked.
     pub picture: Option<Vec<u8>>,
