@@ -13,14 +13,36 @@ use crate::curve::PathCommand;
 use crate::pixel::Pixel;
 use kurbo::Point;
 
-/// The pixels tiny-skia paints for one closed path (nonzero rule), within a window.
+/// The pixels tiny-skia paints for one closed path (nonzero rule), within a window, *with
+/// their winding*: whether the path winds 0 round each pixel centre, exactly its own
+/// orientation `s` (±1: +1 for a counter-clockwise path on screen, as outer borders are
+/// drawn), or anything else.
+///
+/// A path can paint the right pixels alone and still be wrong in the document: a twisted
+/// lobe (a self-crossing) winds `−s` round the pixels it covers, a curl `2s`; a lone
+/// nonzero fill paints them like the rest, but in the document they add to the windings of
+/// the other contours instead of cancelling them (a hole's path meeting its outer border's).
+/// So the path is filled twice: alone (painted iff the winding is not 0), and with a
+/// rectangle round the whole window wound `−s` (painted iff the winding is not `s`). A
+/// pixel is then [`OUTSIDE`], [`INSIDE`] or [`WRONG`], and comparing two paths compares
+/// these classes pixel by pixel, which is what the sum of all contours needs.
 pub(crate) struct Rendered {
     x0: i64,
     y0: i64,
     width: i64,
     height: i64,
-    mask: Option<tiny_skia::Mask>,
+    /// The orientation `s` (+1 or −1) the winding is compared with.
+    orientation: i8,
+    /// The class of every pixel of the window, row by row.
+    class: Option<Vec<u8>>,
 }
+
+/// The path winds 0 round the pixel centre.
+const OUTSIDE: u8 = 0;
+/// The path winds exactly its orientation round the pixel centre.
+const INSIDE: u8 = 1;
+/// Any other winding: wrong wherever the pixel is.
+const WRONG: u8 = 2;
 
 impl Rendered {
     /// Fills the closed path `M start commands Z`.
@@ -85,48 +107,134 @@ impl Rendered {
             y1 = y1.max(r.y0 + r.height);
         }
         let (width, height) = (x1 - x0, y1 - y0);
+        let orientation = match like {
+            Some(r) => r.orientation,
+            None => orientation(start, commands),
+        };
         let mut out = Rendered {
             x0,
             y0,
             width,
             height,
-            mask: None,
-        };
-        let Some(path) = tiny_path(start, commands, x0 as f64, y0 as f64) else {
-            return out;
+            orientation,
+            class: None,
         };
         let (Ok(w), Ok(h)) = (u32::try_from(width), u32::try_from(height)) else {
             return out;
         };
-        let Some(mut mask) = tiny_skia::Mask::new(w, h) else {
+        let fill = |frame: Option<(f32, f32, i8)>, clipped: bool| {
+            let path = tiny_path(start, commands, x0 as f64, y0 as f64, frame, clipped)?;
+            let mut mask = tiny_skia::Mask::new(w, h)?;
+            mask.fill_path(
+                &path,
+                tiny_skia::FillRule::Winding,
+                false,
+                tiny_skia::Transform::identity(),
+            );
+            Some(mask)
+        };
+        let frame = Some((width as f32, height as f32, orientation));
+        let classes = |clipped: bool| -> Option<Vec<u8>> {
+            let (alone, framed) = (fill(None, clipped)?, fill(frame, clipped)?);
+            Some(
+                alone
+                    .data()
+                    .iter()
+                    .zip(framed.data())
+                    .map(|(&a, &f)| match (a != 0, f != 0) {
+                        (false, _) => OUTSIDE,
+                        (true, false) => INSIDE,
+                        (true, true) => WRONG,
+                    })
+                    .collect(),
+            )
+        };
+        let Some(mut class) = classes(false) else {
             return out;
         };
-        mask.fill_path(
-            &path,
-            tiny_skia::FillRule::Winding,
-            false,
-            tiny_skia::Transform::identity(),
-        );
-        out.mask = Some(mask);
+        // tiny-skia (as Skia) draws curves differently when the whole path — in the
+        // document: every contour, one `<path>` — pokes out of the pixmap: its edge clipper
+        // then cuts every cubic at its x and y extrema and quadratics at theirs before
+        // subdividing, which moves the chords. Whether the document will is not known while
+        // one contour is drawn, so a path with curves must be right both ways. Lines are
+        // cut only where they cross the clip, outside this window.
+        if commands.iter().any(|c| !matches!(c, PathCommand::Line(_))) {
+            let Some(clipped) = classes(true) else {
+                out.class = None;
+                return out;
+            };
+            for (c, k) in class.iter_mut().zip(clipped) {
+                if *c != k {
+                    *c = WRONG;
+                }
+            }
+        }
+        out.class = Some(class);
         out
     }
 
-    /// True when the pixel is painted.
+    /// The class of the pixel: [`OUTSIDE`] out of the window, [`WRONG`] everywhere when
+    /// the path could not be filled.
+    fn class(&self, x: i64, y: i64) -> u8 {
+        let (x, y) = (x - self.x0, y - self.y0);
+        if x < 0 || y < 0 || x >= self.width || y >= self.height {
+            return OUTSIDE;
+        }
+        match &self.class {
+            Some(c) => c[(y * self.width + x) as usize],
+            None => WRONG,
+        }
+    }
+
+    /// True when the path winds exactly its orientation round the pixel's centre.
     #[cfg(test)]
     pub(crate) fn painted(&self, p: Pixel) -> bool {
-        let (x, y) = (i64::from(p.x) - self.x0, i64::from(p.y) - self.y0);
-        if x < 0 || y < 0 || x >= self.width || y >= self.height {
-            return false;
-        }
-        match &self.mask {
-            Some(m) => m.data()[(y * self.width + x) as usize] != 0,
-            None => false,
-        }
+        self.class(p.x.into(), p.y.into()) == INSIDE
     }
 }
 
-/// The path translated by `(−dx, −dy)` (whole pixels: exact for grid points) as tiny-skia's.
-fn tiny_path(start: Point, commands: &[PathCommand], dx: f64, dy: f64) -> Option<tiny_skia::Path> {
+/// The sign of the area the path's vertices and control points enclose (shoelace): +1 for
+/// counter-clockwise on screen (y down), as outer borders are drawn; −1 otherwise.
+fn orientation(start: Point, commands: &[PathCommand]) -> i8 {
+    let mut area = 0.0;
+    let mut pen = start;
+    let mut edge = |p: Point| {
+        area += pen.x * p.y - p.x * pen.y;
+        pen = p;
+    };
+    for c in commands {
+        match *c {
+            PathCommand::Line(p) | PathCommand::Arc(kurbo::SvgArc { to: p, .. }) => edge(p),
+            PathCommand::Quad(a, p) => {
+                edge(a);
+                edge(p);
+            }
+            PathCommand::Cubic(a, b, p) => {
+                edge(a);
+                edge(b);
+                edge(p);
+            }
+        }
+    }
+    edge(start);
+    // Screen coordinates: counter-clockwise as seen has a negative shoelace sum.
+    if area <= 0.0 {
+        1
+    } else {
+        -1
+    }
+}
+
+/// The path translated by `(−dx, −dy)` (whole pixels: exact for grid points) as tiny-skia's,
+/// with the rectangle `(0, 0)–(w, h)` wound against `orientation` (see [`Rendered`]).
+fn tiny_path(
+    start: Point,
+    commands: &[PathCommand],
+    dx: f64,
+    dy: f64,
+    frame: Option<(f32, f32, i8)>,
+    clipped: bool,
+) -> Option<tiny_skia::Path> {
     let f = |p: Point| ((p.x - dx) as f32, (p.y - dy) as f32);
     let mut pb = tiny_skia::PathBuilder::with_capacity(commands.len() + 2, commands.len() * 3 + 1);
     let (x, y) = f(start);
@@ -163,6 +271,28 @@ fn tiny_path(start: Point, commands: &[PathCommand], dx: f64, dy: f64) -> Option
             }
         }
         pen = c.end();
+    }
+    pb.close();
+    if clipped {
+        // A flat sliver just outside the window: paints nothing, but the path's bounds no
+        // longer fit the mask, so tiny-skia runs its edge clipper on every edge.
+        pb.move_to(-1.0, -1.0);
+        pb.line_to(-0.5, -1.0);
+        pb.close();
+    }
+    let Some((w, h, orientation)) = frame else {
+        return pb.finish();
+    };
+    // Counter-clockwise on screen is (0,0) → (0,h) → (w,h) → (w,0).
+    pb.move_to(0.0, 0.0);
+    if orientation > 0 {
+        pb.line_to(w, 0.0);
+        pb.line_to(w, h);
+        pb.line_to(0.0, h);
+    } else {
+        pb.line_to(0.0, h);
+        pb.line_to(w, h);
+        pb.line_to(w, 0.0);
     }
     pb.close();
     pb.finish()
@@ -205,11 +335,11 @@ pub(crate) fn misplaced_pixels(reference: &Rendered, path: &Rendered) -> Vec<Pix
     let x1 = (reference.x0 + reference.width).max(path.x0 + path.width);
     let y1 = (reference.y0 + reference.height).max(path.y0 + path.height);
     fn row(r: &Rendered, y: i64) -> (i64, &[u8]) {
-        match &r.mask {
-            Some(m) if y >= r.y0 && y < r.y0 + r.height => {
+        match &r.class {
+            Some(c) if y >= r.y0 && y < r.y0 + r.height => {
                 let w = r.width as usize;
                 let start = (y - r.y0) as usize * w;
-                (r.x0, &m.data()[start..start + w])
+                (r.x0, &c[start..start + w])
             }
             _ => (r.x0, &[]),
         }
@@ -218,15 +348,11 @@ pub(crate) fn misplaced_pixels(reference: &Rendered, path: &Rendered) -> Vec<Pix
     for y in y0..y1 {
         let (ra, a) = row(reference, y);
         let (rb, b) = row(path, y);
-        if ra == rb && a == b {
+        if ra == rb && a == b && !a.is_empty() {
             continue;
         }
-        let at = |from: i64, data: &[u8], x: i64| {
-            let i = x - from;
-            i >= 0 && (i as usize) < data.len() && data[i as usize] != 0
-        };
         for x in x0..x1 {
-            if at(ra, a, x) != at(rb, b, x) {
+            if reference.class(x, y) != path.class(x, y) {
                 if let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) {
                     bad.push(Pixel::new(px, py));
                 }
