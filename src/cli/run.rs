@@ -249,7 +249,13 @@ pub fn summary(name: &str, v: &Vectorized, options: &Options, start: Instant) ->
     let kinds: Vec<String> = kinds
         .iter()
         .map(|(k, &n)| {
-            let (one, many) = kind_nouns(*k);
+            let (one, many) = match (k, d.model) {
+                // The line model's only degenerate pieces are those without an equation.
+                (CurveKind::Degenerate, layertrace::Model::Line) => {
+                    ("piece without equation", "pieces without equation")
+                }
+                _ => kind_nouns(*k),
+            };
             count(n, one, many)
         })
         .collect();
