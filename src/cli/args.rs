@@ -8,11 +8,15 @@ const AFTER_HELP: &str = "\
 Examples:
   layertrace samples/glyph_g_liberationserif_cap120.png -o g.svg --report
   layertrace logo.png -o logo.svg --model circle --fill '#1a237e' --grid 3
+  layertrace logo.png -o logo.pdf --model circle
   layertrace samples/glyph_g_liberationserif_cap120.png --json g.json --decomposition g.png
   cat scan.png | layertrace - --model circle --threshold otsu --json -
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
 
 Output files:
+  The extension names the format (any case): -o writes .svg, .pdf (PDF 1.4) or .eps
+  (EPSF-3.0), the page the image's size with one pixel = one point; --decomposition and
+  --diff write .png; '-' is SVG or PNG. Other names are refused (exit 2) before any work.
   Every output is checked before any work starts (its directory writable, not the input
   file, no two outputs to the same place) and written whole or not at all: each goes to a
   temporary file beside it, and all of them are renamed into place only when the whole run
@@ -26,7 +30,8 @@ Exit codes:
   1  bad input or output (missing, unreadable, not an image, truncated, empty, too large,
      unwritable output, output naming the input); the message says which, and no output
      file is changed
-  2  bad command-line arguments (also: two outputs to the same place)
+  2  bad command-line arguments (also: two outputs to the same place, an output name
+     without a known extension)
   128+N  stopped by signal N (130 Ctrl-C, 143 SIGTERM), no output file changed";
 
 /// Vectorize a bitmap by Digital Level Layers: every border of the shapes is cut into
@@ -37,9 +42,11 @@ pub struct Args {
     /// Input image (PNG, BMP, PNM/PBM, TIFF, GIF, JPEG, WebP); '-' reads standard input.
     pub input: PathBuf,
 
-    /// Write the SVG ('-' for standard output): one path, lines, exact circular and
-    /// elliptic arcs, parabolas as quadratic Béziers, other curves as fitted cubics.
-    #[arg(short, long, value_name = "OUT.svg")]
+    /// Write the drawing as SVG, PDF or EPS, chosen by the extension: .svg, .pdf, .eps
+    /// ('-' for standard output, SVG). One path: lines, exact circular and elliptic arcs,
+    /// parabolas as quadratic Béziers, other curves as fitted cubics; PDF and EPS hold the
+    /// same coordinates (arcs and quadratics as cubics), one pixel = one point.
+    #[arg(short, long, value_name = "OUT.svg|pdf|eps")]
     pub output: Option<PathBuf>,
 
     /// Render the SVG back as `resvg --shape-rendering crispEdges` does and report on
@@ -48,8 +55,8 @@ pub struct Args {
     #[arg(long)]
     pub report: bool,
 
-    /// Write the round-trip differences as PNG: the input's foreground mask black on white,
-    /// missing pixels red, extra pixels blue.
+    /// Write the round-trip differences as PNG (FILE.png, or '-' for standard output): the
+    /// input's foreground mask black on white, missing pixels red, extra pixels blue.
     #[arg(long, value_name = "FILE.png")]
     pub diff: Option<PathBuf>,
 
@@ -79,7 +86,8 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
 
-    /// Write a picture of the decomposition (PNG), in the style of the paper's figures.
+    /// Write a picture of the decomposition (PNG: FILE.png, or '-' for standard output), in
+    /// the style of the paper's figures.
     #[arg(long, value_name = "FILE.png")]
     pub decomposition: Option<PathBuf>,
 

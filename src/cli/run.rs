@@ -3,9 +3,9 @@
 use super::args::Args;
 use layertrace::{
     compare, decompose, decomposition_json, decomposition_picture, default_scale, diff_image,
-    load_path, piece_kind, png_bytes, rasterize_svg, staircases, svg_document, trace,
-    work_estimate, Basis, Compat, Contour, Convention, CurveKind, Error, JsonHeader, LoadOptions,
-    Mask, OutlierRule, OutputSet, SvgOptions, Threshold,
+    document_bytes, load_path, piece_kind, png_bytes, rasterize_svg, staircases, svg_document,
+    trace, work_estimate, Basis, Compat, Contour, Convention, CurveKind, Error, Format, JsonHeader,
+    LoadOptions, Mask, OutlierRule, OutputSet, PictureFormat, SvgOptions, Threshold,
 };
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -15,6 +15,19 @@ use std::time::Instant;
 /// only when everything succeeded.
 pub fn run(args: &Args) -> Result<(), Error> {
     let start = Instant::now();
+    // The formats named by the outputs' extensions, before anything else (usage errors).
+    let format = match &args.output {
+        Some(path) => Format::from_path(path).map_err(|e| naming("-o", e))?,
+        None => Format::Svg,
+    };
+    for (flag, path) in [
+        ("--decomposition", &args.decomposition),
+        ("--diff", &args.diff),
+    ] {
+        if let Some(path) = path {
+            PictureFormat::from_path(path).map_err(|e| naming(flag, e))?;
+        }
+    }
     let stdin = args.input == Path::new("-");
     let mut outs = OutputSet::new((!stdin).then_some(args.input.as_path()));
     let mut named: Vec<(&str, PathBuf)> = Vec::new();
@@ -70,7 +83,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         (Convention::Default, OutlierRule::NotInPiece)
     };
     let contours = trace(mask, convention);
-    check_memory(args, &contours, mask, opts.max_memory)?;
+    check_memory(args, format, &contours, mask, opts.max_memory)?;
     let d = decompose(contours, args.model, rule);
 
     if let Some(id) = json_out {
@@ -152,7 +165,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
             }
         }
         if let Some(id) = svg_out {
-            outs.write(id, out.svg.into_bytes())?;
+            outs.write(id, document_bytes(out.svg, format)?)?;
         }
     }
     outs.commit()?;
@@ -192,13 +205,40 @@ pub fn run(args: &Args) -> Result<(), Error> {
     Ok(())
 }
 
+/// Names the option in an [`Error::UnknownFormat`]: `-o x.txt: unknown output format …`.
+fn naming(flag: &str, e: Error) -> Error {
+    match e {
+        Error::UnknownFormat {
+            path,
+            extension,
+            expected,
+        } => Error::UnknownFormat {
+            path: format!("{flag} {}", path.display()).into(),
+            extension,
+            expected,
+        },
+        e => e,
+    }
+}
+
 /// Refuses a run whose work after tracing would need more than `limit` bytes, before it
 /// allocates anything: the decomposition, and what the asked outputs need on top of it.
-fn check_memory(args: &Args, contours: &[Contour], mask: &Mask, limit: u64) -> Result<(), Error> {
+fn check_memory(
+    args: &Args,
+    format: Format,
+    contours: &[Contour],
+    mask: &Mask,
+    limit: u64,
+) -> Result<(), Error> {
     let (w, h) = (mask.width(), mask.height());
     let e = work_estimate(contours, args.model, w, h, rayon::current_num_threads());
     let mut needed = e.contours + e.decomposition;
     let svg = args.output.is_some() || args.report || args.diff.is_some();
+    if format != Format::Svg {
+        // The PDF or EPS file beside the SVG: at most 1.25 times its size (measured on a
+        // grid of isolated pixels), 1.5 taken; `svg_document` is twice the SVG's bound.
+        needed += e.svg_document / 4 * 3;
+    }
     if svg {
         let check = args.report || args.diff.is_some();
         needed += e.svg_document
