@@ -141,6 +141,25 @@ pub enum Error {
         /// usvg's reason.
         source: usvg::Error,
     },
+    /// An output's name does not give a format that its option writes: an unknown
+    /// extension, or none (see [`crate::Format::from_path`]); checked before any work.
+    #[error("{path}: {} (use {expected})", unknown_format(extension.as_deref()))]
+    UnknownFormat {
+        /// The output path as given.
+        path: PathBuf,
+        /// Its extension, `None` when it has none.
+        extension: Option<String>,
+        /// The extensions accepted, e.g. `.svg, .pdf or .eps`.
+        expected: &'static str,
+    },
+    /// The SVG document could not be written as PDF or EPS (see [`crate::document_bytes`]).
+    #[error("cannot write {format}: {reason}")]
+    Convert {
+        /// The format asked for.
+        format: crate::Format,
+        /// Why (one line).
+        reason: String,
+    },
     /// No raster of this size can be made (zero or too large).
     #[error("cannot rasterize at {width}x{height} pixels")]
     Raster {
@@ -149,6 +168,14 @@ pub enum Error {
         /// Height in pixels.
         height: u32,
     },
+}
+
+/// The start of an [`Error::UnknownFormat`] message.
+fn unknown_format(extension: Option<&str>) -> String {
+    match extension {
+        Some(e) => format!("unknown output format '{e}'"),
+        None => "no extension to name the output format".into(),
+    }
 }
 
 /// A byte count for messages: GiB with one decimal from 1 GiB on, else MiB, else KiB.

@@ -94,6 +94,7 @@ pub use estimate::{
     work_estimate, WorkEstimate, DRAW_BYTES_PER_POINT, FIDELITY_BYTES_PER_SVG_BYTE,
     SVG_BYTES_PER_CONTOUR, SVG_BYTES_PER_POINT,
 };
+pub use export::format::{document_bytes, Format, PictureFormat};
 pub use export::json::{decomposition_json, JsonHeader};
 pub use export::picture::{decomposition_picture, default_scale};
 pub use export::svg::{svg_document, SvgOptions, SvgOutput};

@@ -352,7 +352,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
 }
 
 /// `/dev/stdout` and its aliases name standard output: two of them in one run are one place.
-fn is_stdout_alias(path: &Path) -> bool {
+pub(crate) fn is_stdout_alias(path: &Path) -> bool {
     ["/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"]
         .iter()
         .any(|a| path == Path::new(a))

@@ -134,6 +134,17 @@ fn a_folder_and_files_give_what_single_runs_give() {
         .starts_with("<svg"));
     let (code, err) = cli_in(d, &["in", "--out-dir", "out", "-q"]);
     assert_eq!((code, err.as_str()), (0, ""));
+    // Another format by name.
+    let (code, err) = cli_in(d, &["in", "--out-dir", "pdf", "--out-format", "pdf", "-q"]);
+    assert_eq!(code, 0, "{err}");
+    let pdfs = names(&d.join("pdf"));
+    assert_eq!(pdfs.len(), SAMPLES.len());
+    for name in pdfs {
+        assert!(name.ends_with(".pdf"), "{name}");
+        assert!(std::fs::read(d.join("pdf").join(name))
+            .unwrap()
+            .starts_with(b"%PDF-"));
+    }
     assert!(
         !names(&d.join("out")).iter().any(|n| n.starts_with('.')),
         "temporaries left"

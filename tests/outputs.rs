@@ -58,22 +58,40 @@ fn one_line(err: &str) {
 fn the_input_is_never_overwritten() {
     let dir = scratch();
     let d = dir.path();
-    std::fs::copy(repo(SAMPLE), d.join("x.png")).unwrap();
-    std::os::unix::fs::symlink("x.png", d.join("link.png")).unwrap();
+    // The input under the names each option accepts (the format is read from the content).
+    for ext in ["png", "svg"] {
+        std::fs::copy(repo(SAMPLE), d.join(format!("x.{ext}"))).unwrap();
+        std::os::unix::fs::symlink(format!("x.{ext}"), d.join(format!("link.{ext}"))).unwrap();
+    }
     let original = std::fs::read(d.join("x.png")).unwrap();
-    for flag in ["-o", "--json", "--decomposition", "--diff"] {
-        for out in ["x.png", "./x.png", "link.png"] {
-            let (code, err) = cli_in(d, &["x.png", flag, out]);
+    for (flag, ext) in [
+        ("-o", "svg"),
+        ("--json", "png"),
+        ("--decomposition", "png"),
+        ("--diff", "png"),
+    ] {
+        let input = format!("x.{ext}");
+        for out in [
+            format!("x.{ext}"),
+            format!("./x.{ext}"),
+            format!("link.{ext}"),
+        ] {
+            let (code, err) = cli_in(d, &[&input, flag, &out]);
             assert_eq!(code, 1, "{flag} {out}: {err}");
             one_line(&err);
             assert!(err.contains("is the input file"), "{err}");
-            assert_eq!(std::fs::read(d.join("x.png")).unwrap(), original);
+            assert_eq!(std::fs::read(d.join(&input)).unwrap(), original);
         }
         // Reading through the link, writing the file itself.
-        let (code, _) = cli_in(d, &["link.png", flag, "x.png"]);
+        let (code, _) = cli_in(d, &[&format!("link.{ext}"), flag, &input]);
         assert_eq!(code, 1);
     }
-    assert_eq!(names(d), ["link.png", "x.png"]);
+    // A name of the wrong format is refused first, as a usage error.
+    let (code, err) = cli_in(d, &["x.png", "-o", "x.png"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("unknown output format 'png'"), "{err}");
+    assert_eq!(std::fs::read(d.join("x.png")).unwrap(), original);
+    assert_eq!(names(d), ["link.png", "link.svg", "x.png", "x.svg"]);
 }
 
 #[test]
@@ -85,7 +103,7 @@ fn two_outputs_to_one_place_are_usage_errors() {
     for args in [
         vec![s, "-o", "-", "--json", "-"],
         vec![s, "-o", "a.svg", "--json", "a.svg"],
-        vec![s, "-o", "a.svg", "--diff", "./a.svg"],
+        vec![s, "--decomposition", "a.png", "--diff", "./a.png"],
         vec![s, "--json", "/dev/stdout", "-o", "-"],
     ] {
         let out = bin().current_dir(d).args(&args).output().unwrap();

@@ -1,19 +1,23 @@
 //! The command line: every option, checked when it is parsed.
 
 use clap::Parser;
-use layertrace::{Model, Threshold};
+use layertrace::{Format, Model, Threshold};
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
 Examples:
   layertrace samples/glyph_g_liberationserif_cap120.png -o g.svg --report
   layertrace logo.png -o logo.svg --model circle --fill '#1a237e' --grid 3
+  layertrace logo.png -o logo.pdf --model circle
   layertrace samples/glyph_g_liberationserif_cap120.png --json g.json --decomposition g.png
   cat scan.png | layertrace - --model circle --threshold otsu --json -
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
   layertrace scans/ logo.png --out-dir svg/ --model circle
 
 Output files:
+  The extension names the format (any case): -o writes .svg, .pdf (PDF 1.4) or .eps
+  (EPSF-3.0), the page the image's size with one pixel = one point; --decomposition and
+  --diff write .png; '-' is SVG or PNG. Other names are refused (exit 2) before any work.
   Every output is checked before any work starts (its directory writable, not the input
   file, no two outputs to the same place) and written whole or not at all: each goes to a
   temporary file beside it, and all of them are renamed into place only when the whole run
@@ -27,7 +31,8 @@ Exit codes:
   1  bad input or output (missing, unreadable, not an image, truncated, empty, too large,
      unwritable output, output naming the input); the message says which, and no output
      file is changed
-  2  bad command-line arguments (also: two outputs to the same place)
+  2  bad command-line arguments (also: two outputs to the same place, an output name
+     without a known extension, several inputs or a folder without --out-dir)
   128+N  stopped by signal N (130 Ctrl-C, 143 SIGTERM), no output file changed";
 
 /// Vectorize a bitmap by Digital Level Layers: every border of the shapes is cut into
@@ -40,9 +45,11 @@ pub struct Args {
     #[arg(required = true, value_name = "INPUT")]
     pub inputs: Vec<PathBuf>,
 
-    /// Write the SVG ('-' for standard output): one path, lines, exact circular and
-    /// elliptic arcs, parabolas as quadratic Béziers, other curves as fitted cubics.
-    #[arg(short, long, value_name = "OUT.svg")]
+    /// Write the drawing as SVG, PDF or EPS, chosen by the extension: .svg, .pdf, .eps
+    /// ('-' for standard output, SVG). One path: lines, parabolas as quadratic Béziers,
+    /// circular and elliptic arcs as cubics within 0.01 px of the exact arc, other curves as
+    /// fitted cubics; PDF and EPS hold the same coordinates, one pixel = one point.
+    #[arg(short, long, value_name = "OUT.svg|pdf|eps")]
     pub output: Option<PathBuf>,
 
     /// Write each input's SVG into DIR as NAME.svg (NAME: the input's file name without its
@@ -51,14 +58,20 @@ pub struct Args {
     #[arg(long, value_name = "DIR", conflicts_with_all = ["output", "json", "decomposition", "diff"])]
     pub out_dir: Option<PathBuf>,
 
+    /// The format of the files --out-dir writes: svg, pdf or eps.
+    #[arg(long, value_name = "svg|pdf|eps", default_value = "svg", requires = "out_dir",
+          value_parser = parse_format)]
+    pub out_format: Format,
+
     /// Render the SVG back as `resvg --shape-rendering crispEdges` does and report on
     /// standard error: differing pixels, IoU, path commands by type, SVG size, pixel
     /// staircases (runs of 4 or more alternating axis-aligned steps of at most 2 px).
     #[arg(long)]
     pub report: bool,
 
-    /// Write the round-trip differences as PNG: the foreground mask (the input after
-    /// thresholding) black on white, missing pixels red, extra pixels blue.
+    /// Write the round-trip differences as PNG (FILE.png, or '-' for standard output): the
+    /// foreground mask (the input after thresholding) black on white, missing pixels red,
+    /// extra pixels blue.
     #[arg(long, value_name = "FILE.png")]
     pub diff: Option<PathBuf>,
 
@@ -88,7 +101,8 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
 
-    /// Write a picture of the decomposition (PNG), in the style of the paper's figures.
+    /// Write a picture of the decomposition (PNG: FILE.png, or '-' for standard output), in
+    /// the style of the paper's figures.
     #[arg(long, value_name = "FILE.png")]
     pub decomposition: Option<PathBuf>,
 
@@ -152,6 +166,11 @@ fn number_in(s: &str, lo: f64, hi: f64, what: &str) -> Result<f64, String> {
         Ok(v) if v.is_finite() && (lo..=hi).contains(&v) => Ok(v),
         _ => Err(format!("'{s}' is not {what} (a number from {lo} to {hi})")),
     }
+}
+
+fn parse_format(s: &str) -> Result<Format, String> {
+    Format::from_path(std::path::Path::new(&format!("x.{s}")))
+        .map_err(|_| format!("'{s}' is not an output format (svg, pdf or eps)"))
 }
 
 fn parse_tolerance(s: &str) -> Result<f64, String> {

@@ -4,7 +4,7 @@
 use super::args::Args;
 use super::progress::Bar;
 use super::run::{one, options, Outputs};
-use layertrace::Error;
+use layertrace::{Error, Format};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -77,14 +77,14 @@ fn expand(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
     Ok(files)
 }
 
-/// The SVG of each input in `dir`: its file name without the extension, `.svg`. Two inputs
-/// with the same name are refused before any work.
-fn destinations(files: &[PathBuf], dir: &Path) -> Result<Vec<PathBuf>, Error> {
+/// The output of each input in `dir`: its file name without the extension, then `.svg`
+/// (or the format's extension). Two inputs with the same name are refused before any work.
+fn destinations(files: &[PathBuf], dir: &Path, format: Format) -> Result<Vec<PathBuf>, Error> {
     let mut seen: HashMap<PathBuf, &Path> = HashMap::new();
     let mut out = Vec::with_capacity(files.len());
     for f in files {
         let stem = f.file_stem().unwrap_or(f.as_os_str());
-        let dest = dir.join(Path::new(stem).with_extension("svg"));
+        let dest = dir.join(Path::new(stem).with_extension(format.extension()));
         if let Some(first) = seen.insert(dest.clone(), f) {
             return Err(Error::Arguments(format!(
                 "{} and {} would both be written to {}; rename one or run them apart",
@@ -102,7 +102,7 @@ fn destinations(files: &[PathBuf], dir: &Path) -> Result<Vec<PathBuf>, Error> {
 /// failures are named on standard error as they happen.
 pub fn run(args: &Args, dir: &Path, pool: Option<Arc<rayon::ThreadPool>>) -> Result<bool, Error> {
     let files = expand(&args.inputs)?;
-    let dests = destinations(&files, dir)?;
+    let dests = destinations(&files, dir, args.out_format)?;
     std::fs::create_dir_all(dir).map_err(|source| Error::Write {
         path: dir.to_path_buf(),
         source,

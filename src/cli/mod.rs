@@ -40,7 +40,7 @@ pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
 /// 2 for what the command line got wrong, 1 for everything else.
 fn exit_code(e: &Error) -> u8 {
     match e {
-        Error::SameOutput { .. } | Error::Arguments(_) => 2,
+        Error::SameOutput { .. } | Error::Arguments(_) | Error::UnknownFormat { .. } => 2,
         _ => 1,
     }
 }

@@ -4,8 +4,8 @@ use super::args::Args;
 use super::batch;
 use super::progress::Bar;
 use layertrace::{
-    diff_image, png_bytes, staircases, vectorize, Basis, Compat, CurveKind, Error, Options,
-    OutputSet, Progress, Stage, SvgOptions, Vectorized,
+    diff_image, document_bytes, png_bytes, staircases, vectorize, Basis, Compat, CurveKind, Error,
+    Format, Options, OutputSet, PictureFormat, Progress, Stage, SvgOptions, Vectorized,
 };
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -39,6 +39,18 @@ pub fn run(args: &Args) -> Result<bool, Error> {
             .map(Arc::new),
         None => None,
     };
+    // The formats named by the outputs' extensions, before anything else (usage errors).
+    if let Some(path) = &args.output {
+        Format::from_path(path).map_err(|e| naming("-o", e))?;
+    }
+    for (flag, path) in [
+        ("--decomposition", &args.decomposition),
+        ("--diff", &args.diff),
+    ] {
+        if let Some(path) = path {
+            PictureFormat::from_path(path).map_err(|e| naming(flag, e))?;
+        }
+    }
     match &args.out_dir {
         None => {
             let input = batch::single_input(args)?;
@@ -174,8 +186,9 @@ pub fn one(
     } else {
         String::new()
     };
-    if let (Some(id), Some(svg)) = (svg_out, &v.svg) {
-        outs.write(id, svg.svg.clone().into_bytes())?;
+    if let (Some(id), Some(path), Some(svg)) = (svg_out, &outputs.svg, v.svg.as_ref()) {
+        let format = Format::from_path(path).unwrap_or(Format::Svg);
+        outs.write(id, document_bytes(svg.svg.clone(), format)?)?;
     }
     outs.commit()?;
     let name = if stdin {
@@ -187,6 +200,22 @@ pub fn one(
         report,
         summary: summary(&name, &v, options, start),
     })
+}
+
+/// Names the option in an [`Error::UnknownFormat`]: `-o x.txt: unknown output format …`.
+fn naming(flag: &str, e: Error) -> Error {
+    match e {
+        Error::UnknownFormat {
+            path,
+            extension,
+            expected,
+        } => Error::UnknownFormat {
+            path: format!("{flag} {}", path.display()).into(),
+            extension,
+            expected,
+        },
+        e => e,
+    }
 }
 
 /// The `--report` lines: fidelity, the SVG's commands, staircases.

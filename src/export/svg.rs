@@ -77,8 +77,9 @@ pub struct SvgOutput {
     pub joins: JoinCounts,
 }
 
-/// Formats `v` with at most `precision` decimals, trailing zeros stripped, no `-0`.
-fn number(v: f64, precision: usize, s: &mut String) {
+/// Formats `v` with at most `precision` decimals, trailing zeros stripped, no `-0` (also
+/// the number writer of the PDF and EPS exports).
+pub(crate) fn number(v: f64, precision: usize, s: &mut String) {
     if !v.is_finite() {
         s.push('0');
         return;
