@@ -11,6 +11,7 @@
 //! decoding and thresholding will need against [`LoadOptions::max_memory`], before any pixel
 //! is decoded. PNG is decoded row by row straight into the mask.
 
+mod clean;
 mod grey;
 mod input;
 mod jpeg;
@@ -21,6 +22,7 @@ mod png;
 #[cfg(test)]
 mod tests;
 
+pub use clean::Cleaned;
 pub use grey::Compat;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};
