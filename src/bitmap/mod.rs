@@ -9,8 +9,12 @@
 //!
 //! Image dimensions are checked against [`LoadOptions::max_pixels`], and the memory that
 //! decoding and thresholding will need against [`LoadOptions::max_memory`], before any pixel
-//! is decoded. PNG is decoded row by row straight into the mask.
+//! is decoded. PNG is decoded row by row straight into the mask (through a grey byte per
+//! pixel for Otsu's and the adaptive threshold, which need the whole image). For scans, a
+//! local threshold ([`Threshold::Adaptive`]) and speck and hole removal ([`Mask::clean`],
+//! [`LoadOptions::turdsize`]) follow potrace's companion mkbitmap and its `-t` option.
 
+mod adaptive;
 mod clean;
 mod grey;
 mod input;

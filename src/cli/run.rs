@@ -61,8 +61,12 @@ pub fn run(args: &Args) -> Result<(), Error> {
         max_memory: args
             .max_memory
             .unwrap_or_else(layertrace::default_max_memory),
+        turdsize: args.turdsize,
     };
     let loaded = load_path(&args.input, &opts)?;
+    if args.report && args.turdsize > 0 {
+        eprintln!("cleaning: {}", loaded.cleaned);
+    }
     let mask = &loaded.mask;
     let (convention, rule) = if ipol {
         (Convention::Ipol, OutlierRule::Any)
