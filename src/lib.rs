@@ -77,8 +77,8 @@ pub use vectorize::{
 };
 
 pub use bitmap::{
-    default_max_memory, load_memory, load_path, parse_memory_size, threshold_image, Compat,
-    LoadOptions, Loaded, Mask, Threshold,
+    default_max_memory, load_memory, load_path, parse_memory_size, threshold_image, Cleaned,
+    Compat, LoadOptions, Loaded, Mask, Threshold,
 };
 pub use contour::{trace, Contour, Convention};
 pub use curve::{

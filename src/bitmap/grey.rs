@@ -13,7 +13,7 @@ pub enum Compat {
     /// with libpng's default weights, truncated: `(6968 R + 23434 G + 2366 B) >> 15` (libpng
     /// 1.6's 8-bit path without gamma; the rounded variant `+ 16384` flips pixels of the demo
     /// image `card_suits` against the reference's output), 16-bit
-    /// samples reduced to their high byte. Use it with [`Threshold::Otsu`] to match the
+    /// samples reduced to their high byte. Use it with [`Threshold::Otsu`](crate::Threshold::Otsu) to match the
     /// reference binarisation (ink = grey <= Otsu's t).
     Ipol,
 }

@@ -10,6 +10,8 @@ use std::path::Path;
 use image::error::ImageFormatHint;
 use image::{DynamicImage, ImageDecoder, ImageFormat, ImageReader, Limits};
 
+use super::adaptive;
+use super::clean::Cleaned;
 use super::grey::{default_grey, grey_row, ipol_grey, Compat};
 use super::input::{default_max_memory, display_name, open, Input};
 use super::jpeg::load_jpeg;
@@ -26,7 +28,8 @@ pub(super) const SLACK: u64 = 16 << 20;
 pub struct LoadOptions {
     /// How the grey level threshold is chosen.
     pub threshold: Threshold,
-    /// Swap foreground and background after thresholding (for light ink on dark paper).
+    /// Swap foreground and background after thresholding (for light ink on dark paper); the
+    /// adaptive threshold is applied to the inverted grey levels instead.
     pub invert: bool,
     /// Which convention turns the pixels into grey levels.
     pub compat: Compat,
@@ -36,6 +39,10 @@ pub struct LoadOptions {
     /// is larger is refused ([`Error::NeedsMemory`]) before its pixels are decoded; it also
     /// bounds how much of a pipe is read. Default [`default_max_memory`].
     pub max_memory: u64,
+    /// Drop foreground components and holes whose border encloses at most this many pixels
+    /// right after thresholding ([`Mask::clean`], potrace's `turdsize`). Default 0: the mask
+    /// is the thresholded image, exactly.
+    pub turdsize: u64,
 }
 
 impl Default for LoadOptions {
@@ -46,6 +53,7 @@ impl Default for LoadOptions {
             compat: Compat::Default,
             max_pixels: 400_000_000,
             max_memory: default_max_memory(),
+            turdsize: 0,
         }
     }
 }
@@ -55,8 +63,12 @@ impl Default for LoadOptions {
 pub struct Loaded {
     /// The binary image.
     pub mask: Mask,
-    /// The threshold actually used: before `invert`, foreground = grey < `threshold`.
+    /// The threshold actually used: before `invert`, foreground = grey < `threshold`. For
+    /// [`Threshold::Adaptive`], which has a threshold per pixel, their mean (rounded), for
+    /// information only.
     pub threshold: u8,
+    /// What cleaning ([`LoadOptions::turdsize`]) dropped; all zero without it.
+    pub cleaned: Cleaned,
 }
 
 /// Reads, decodes and thresholds the image file at `path`; `-` reads standard input.
@@ -242,24 +254,33 @@ pub(super) fn decode_error(
 }
 
 /// Receives grey levels row by row (or Adam7 pass line by line) and makes the mask: directly
-/// for a fixed threshold, through a grey byte per pixel for Otsu's.
+/// for a fixed threshold, through a grey byte per pixel for Otsu's and the adaptive one.
 pub(super) struct Sink {
     width: u32,
     mask: Mask,
-    /// Every pixel's grey level, kept for Otsu's threshold only.
+    /// Every pixel's grey level, kept for Otsu's and the adaptive threshold only.
     grey: Option<Vec<u8>>,
     threshold: u8,
-    invert: bool,
+    opts: LoadOptions,
 }
 
 impl Sink {
-    /// Bytes a sink of `width` × `height` pixels allocates.
+    /// Bytes a sink of `width` × `height` pixels allocates at its peak: the mask, and either
+    /// the grey levels with what thresholding them needs, or what cleaning needs (the grey
+    /// levels are freed first).
     pub(super) fn bytes(width: u32, height: u32, opts: &LoadOptions) -> u64 {
+        let pixels = u64::from(width) * u64::from(height);
         let grey = match opts.threshold {
-            Threshold::Otsu => u64::from(width) * u64::from(height),
             Threshold::Fixed(_) => 0,
+            Threshold::Otsu => pixels,
+            Threshold::Adaptive { .. } => pixels + adaptive::bytes(width),
         };
-        Mask::bytes_for(width, height) + grey
+        let clean = if opts.turdsize > 0 {
+            Mask::clean_bytes(width, height)
+        } else {
+            0
+        };
+        Mask::bytes_for(width, height) + grey.max(clean)
     }
 
     /// An empty sink; allocation failures are [`Error::OutOfMemory`].
@@ -275,7 +296,7 @@ impl Sink {
         })?;
         let (grey, threshold) = match opts.threshold {
             Threshold::Fixed(t) => (None, t),
-            Threshold::Otsu => {
+            Threshold::Otsu | Threshold::Adaptive { .. } => {
                 let n = u64::from(width) * u64::from(height);
                 (Some(try_buffer(n, path)?), 0)
             }
@@ -285,7 +306,7 @@ impl Sink {
             mask,
             grey,
             threshold,
-            invert: opts.invert,
+            opts: *opts,
         })
     }
 
@@ -303,7 +324,7 @@ impl Sink {
             }
             None => {
                 for (k, &g) in grey.iter().enumerate() {
-                    if (g < self.threshold) != self.invert {
+                    if (g < self.threshold) != self.opts.invert {
                         self.mask.set_index(base + k * step);
                     }
                 }
@@ -311,25 +332,42 @@ impl Sink {
         }
     }
 
-    /// The mask and the threshold used (Otsu's is decided here, on every pixel).
+    /// The mask, cleaned, and the threshold used (Otsu's and the adaptive one are decided
+    /// here, on every pixel).
     pub(super) fn finish(mut self) -> Loaded {
         if let Some(grey) = self.grey.take() {
-            // otsu() returns at most 254.
-            self.threshold = otsu(&histogram(&grey)).saturating_add(1);
-            for (i, &g) in grey.iter().enumerate() {
-                if (g < self.threshold) != self.invert {
-                    self.mask.set_index(i);
-                }
-            }
+            self.threshold = threshold_grey(&grey, &self.opts, &mut self.mask);
         }
+        let cleaned = self.mask.clean(self.opts.turdsize);
         Loaded {
             mask: self.mask,
             threshold: self.threshold,
+            cleaned,
         }
     }
 }
 
-/// Thresholds a decoded image into a [`Loaded`] mask according to `opts`
+/// Sets the foreground pixels of `grey` (every pixel of `mask`, row-major) in `mask`, all
+/// background before; returns the threshold used ([`Loaded::threshold`]).
+fn threshold_grey(grey: &[u8], opts: &LoadOptions, mask: &mut Mask) -> u8 {
+    let threshold = match opts.threshold {
+        Threshold::Fixed(t) => t,
+        // otsu() returns at most 254.
+        Threshold::Otsu => otsu(&histogram(grey)).saturating_add(1),
+        Threshold::Adaptive { radius, k_percent } => {
+            let (w, h) = (mask.width(), mask.height());
+            return adaptive::sauvola(grey, w, h, radius, k_percent, opts.invert, mask);
+        }
+    };
+    for (i, &g) in grey.iter().enumerate() {
+        if (g < threshold) != opts.invert {
+            mask.set_index(i);
+        }
+    }
+    threshold
+}
+
+/// Thresholds a decoded image into a [`Loaded`] mask according to `opts`, and cleans it
 /// (`opts.max_pixels` and `opts.max_memory` are not checked here).
 pub fn threshold_image(img: &DynamicImage, opts: &LoadOptions) -> Loaded {
     let (width, height) = (img.width(), img.height());
@@ -337,19 +375,14 @@ pub fn threshold_image(img: &DynamicImage, opts: &LoadOptions) -> Loaded {
         Compat::Default => default_grey(img),
         Compat::Ipol => ipol_grey(img),
     };
-    let threshold = match opts.threshold {
-        Threshold::Fixed(t) => t,
-        // otsu() returns at most 254.
-        Threshold::Otsu => otsu(&histogram(&grey)).saturating_add(1),
-    };
     let mut mask = Mask::new(width, height);
-    let w = width as usize;
-    for (i, &g) in grey.iter().enumerate() {
-        if (g < threshold) != opts.invert {
-            mask.set((i % w.max(1)) as i64, (i / w.max(1)) as i64, true);
-        }
+    let threshold = threshold_grey(&grey, opts, &mut mask);
+    let cleaned = mask.clean(opts.turdsize);
+    Loaded {
+        mask,
+        threshold,
+        cleaned,
     }
-    Loaded { mask, threshold }
 }
 
 #[cfg(test)]

@@ -59,6 +59,25 @@ impl Mask {
         }
     }
 
+    /// True iff the pixel of row-major index `i` is foreground (false past the last pixel).
+    #[inline]
+    pub(crate) fn get_index(&self, i: usize) -> bool {
+        self.bits
+            .get(i / 64)
+            .is_some_and(|w| (w >> (i % 64)) & 1 == 1)
+    }
+
+    /// Swaps foreground and background at row-major index `i` (ignored past the last
+    /// pixel).
+    #[inline]
+    pub(crate) fn flip_index(&mut self, i: usize) {
+        if i < self.width as usize * self.height as usize {
+            if let Some(w) = self.bits.get_mut(i / 64) {
+                *w ^= 1 << (i % 64);
+            }
+        }
+    }
+
     /// A mask whose pixel `(x, y)` is foreground iff `f(x, y)`.
     pub fn from_fn(width: u32, height: u32, mut f: impl FnMut(u32, u32) -> bool) -> Mask {
         let mut m = Mask::new(width, height);

@@ -9,8 +9,13 @@
 //!
 //! Image dimensions are checked against [`LoadOptions::max_pixels`], and the memory that
 //! decoding and thresholding will need against [`LoadOptions::max_memory`], before any pixel
-//! is decoded. PNG is decoded row by row straight into the mask.
+//! is decoded. PNG is decoded row by row straight into the mask (through a grey byte per
+//! pixel for Otsu's and the adaptive threshold, which need the whole image). For scans, a
+//! local threshold ([`Threshold::Adaptive`]) and speck and hole removal ([`Mask::clean`],
+//! [`LoadOptions::turdsize`]) follow potrace's companion mkbitmap and its `-t` option.
 
+mod adaptive;
+mod clean;
 mod grey;
 mod input;
 mod jpeg;
@@ -21,6 +26,7 @@ mod png;
 #[cfg(test)]
 mod tests;
 
+pub use clean::Cleaned;
 pub use grey::Compat;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};

@@ -1,4 +1,5 @@
-//! Choosing the grey level threshold, by a fixed value or by Otsu's method.
+//! Choosing the grey level threshold: a fixed value, Otsu's method, or a local threshold
+//! ([`super::adaptive`]).
 
 use num_bigint::BigUint;
 
@@ -12,6 +13,32 @@ pub enum Threshold {
     /// foreground is `grey <= t` (reported as threshold `t + 1`). A one-level image gives
     /// `t = 0`.
     Otsu,
+    /// A local threshold for scans and photographs of pages (Sauvola's rule): a pixel is
+    /// foreground iff `grey < m (1 + k (s / 128 - 1))`, with `m` and `s` the mean and the
+    /// standard deviation of the grey levels in the `(2 radius + 1)²` window around it (cut by
+    /// the image border) and `k = k_percent / 100`. A lighting gradient, a soft shadow and a
+    /// white page stay background. With [`LoadOptions::invert`](crate::LoadOptions::invert)
+    /// the rule is applied to `255 - grey` (light ink on dark paper). See
+    /// [`Threshold::ADAPTIVE`] for the defaults.
+    Adaptive {
+        /// Half the window's side, in pixels: larger than the thickest stroke, smaller than
+        /// the lighting changes (the default suits text of 10 to 60 pixels).
+        radius: u32,
+        /// Sauvola's `k` in hundredths (0 to 100): higher drops fainter ink and more noise.
+        k_percent: u8,
+    },
+}
+
+impl Threshold {
+    /// The default window radius of [`Threshold::Adaptive`], in pixels.
+    pub const ADAPTIVE_RADIUS: u32 = 16;
+    /// The default `k` of [`Threshold::Adaptive`], in hundredths.
+    pub const ADAPTIVE_K_PERCENT: u8 = 20;
+    /// [`Threshold::Adaptive`] with its default window radius and `k`.
+    pub const ADAPTIVE: Threshold = Threshold::Adaptive {
+        radius: Threshold::ADAPTIVE_RADIUS,
+        k_percent: Threshold::ADAPTIVE_K_PERCENT,
+    };
 }
 
 pub(super) fn histogram(grey: &[u8]) -> [u64; 256] {

@@ -23,6 +23,26 @@ fn all_options() -> Vec<LoadOptions> {
             }
         }
     }
+    // The scan options: a grey buffer, then cleaning.
+    for (threshold, invert, turdsize) in [
+        (Threshold::ADAPTIVE, false, 0),
+        (
+            Threshold::Adaptive {
+                radius: 3,
+                k_percent: 35,
+            },
+            true,
+            3,
+        ),
+        (Threshold::Fixed(128), false, 5),
+    ] {
+        out.push(LoadOptions {
+            threshold,
+            invert,
+            turdsize,
+            ..LoadOptions::default()
+        });
+    }
     out
 }
 
@@ -32,6 +52,7 @@ fn assert_same_as_whole_image(bytes: &[u8], what: &str) {
         let old = threshold_image(&img, &opts);
         let new = load_memory(bytes, &opts).unwrap_or_else(|e| panic!("{what}: {e}"));
         assert_eq!(new.threshold, old.threshold, "{what} {opts:?}");
+        assert_eq!(new.cleaned, old.cleaned, "{what} {opts:?}");
         assert!(new.mask == old.mask, "{what} {opts:?}: masks differ");
     }
 }
@@ -54,6 +75,7 @@ fn bundled_samples_as_before() {
             let old = threshold_image(&img, &opts);
             let new = load_path(&p, &opts).unwrap();
             assert_eq!(new.threshold, old.threshold, "{} {opts:?}", p.display());
+            assert_eq!(new.cleaned, old.cleaned, "{} {opts:?}", p.display());
             assert!(new.mask == old.mask, "{} {opts:?}", p.display());
         }
     }

@@ -11,6 +11,7 @@ Examples:
   layertrace logo.png -o logo.pdf --model circle
   layertrace samples/glyph_g_liberationserif_cap120.png --json g.json --decomposition g.png
   cat scan.png | layertrace - --model circle --threshold otsu --json -
+  layertrace page.jpg -o page.svg --threshold adaptive --turdsize 4 --report
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
   layertrace scans/ logo.png --out-dir svg/ --model circle
 
@@ -110,10 +111,19 @@ pub struct Args {
     #[arg(long, short, default_value = "conic", value_parser = parse_model)]
     pub model: Model,
 
-    /// Foreground is luma < N (0..=255), or 'otsu' for Otsu's threshold
+    /// Foreground is luma < N (0..=255), 'otsu' for Otsu's threshold, or 'adaptive' for a
+    /// local threshold that ignores lighting gradients and shadows (scans, photographs of
+    /// pages; Sauvola's rule over a window of radius R pixels, 1 to 1000, default 16, with
+    /// k = K/100, K 0 to 100, default 20: 'adaptive:R' or 'adaptive:R:K')
     /// [default: 128, or otsu with --compat ipol].
-    #[arg(long, value_name = "N|otsu", value_parser = parse_threshold)]
+    #[arg(long, value_name = "N|otsu|adaptive[:R[:K]]", value_parser = parse_threshold)]
     pub threshold: Option<Threshold>,
+
+    /// Drop specks and fill holes whose border encloses at most N pixels, after
+    /// thresholding (potrace's -t); 0 keeps the thresholded image exactly. --report says
+    /// what was dropped.
+    #[arg(long, value_name = "N", default_value_t = 0, conflicts_with = "compat")]
+    pub turdsize: u64,
 
     /// Light foreground on a dark background.
     #[arg(long)]
@@ -185,9 +195,44 @@ fn parse_threshold(s: &str) -> Result<Threshold, String> {
     if s.eq_ignore_ascii_case("otsu") {
         return Ok(Threshold::Otsu);
     }
+    let mut parts = s.split(':');
+    if parts
+        .next()
+        .is_some_and(|p| p.eq_ignore_ascii_case("adaptive"))
+    {
+        let mut number =
+            |what: &str, range: std::ops::RangeInclusive<u32>, default: u32| match parts.next() {
+                None => Ok(default),
+                Some(p) => match p.trim().parse::<u32>() {
+                    Ok(v) if range.contains(&v) => Ok(v),
+                    _ => Err(format!(
+                        "'{s}': {what} must be a whole number from {} to {}",
+                        range.start(),
+                        range.end()
+                    )),
+                },
+            };
+        let radius = number(
+            "R (the window radius)",
+            1..=1000,
+            Threshold::ADAPTIVE_RADIUS,
+        )?;
+        let k = number(
+            "K (Sauvola's k in hundredths)",
+            0..=100,
+            u32::from(Threshold::ADAPTIVE_K_PERCENT),
+        )?;
+        if parts.next().is_some() {
+            return Err(format!("'{s}' has too many parts: adaptive[:R[:K]]"));
+        }
+        return Ok(Threshold::Adaptive {
+            radius,
+            k_percent: k as u8,
+        });
+    }
     s.parse::<u8>()
         .map(Threshold::Fixed)
-        .map_err(|_| format!("'{s}' is neither a number 0..=255 nor 'otsu'"))
+        .map_err(|_| format!("'{s}' is neither a number 0..=255 nor 'otsu' nor 'adaptive[:R[:K]]'"))
 }
 
 /// The most worker threads accepted: four per core (more only costs memory and start-up).

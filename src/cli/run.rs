@@ -87,6 +87,7 @@ pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPoo
     let mut o = Options::default()
         .model(args.model)
         .invert(args.invert)
+        .turdsize(args.turdsize)
         .max_pixels(args.max_pixels)
         .max_memory(
             args.max_memory
@@ -181,11 +182,14 @@ pub fn one(
             })?;
         outs.write(id, bytes)?;
     }
-    let report = if args.report {
-        report(&v)?
+    let mut report = if args.report && args.turdsize > 0 {
+        format!("cleaning: {}\n", v.cleaned)
     } else {
         String::new()
     };
+    if args.report {
+        report += &self::report(&v)?;
+    }
     if let (Some(id), Some(path), Some(svg)) = (svg_out, &outputs.svg, v.svg.as_ref()) {
         let format = Format::from_path(path).unwrap_or(Format::Svg);
         outs.write(id, document_bytes(svg.svg.clone(), format)?)?;
@@ -296,6 +300,11 @@ pub fn summary(name: &str, v: &Vectorized, options: &Options, start: Instant) ->
     let holes = d.contours.iter().filter(|c| c.hole).count();
     let threshold = match options.effective_threshold() {
         layertrace::Threshold::Otsu => format!("threshold {} (Otsu)", v.threshold),
+        layertrace::Threshold::Adaptive { radius, k_percent } => format!(
+            "threshold adaptive (radius {radius}, k {:.2}, mean {})",
+            f64::from(k_percent) / 100.0,
+            v.threshold
+        ),
         _ => format!("threshold {}", v.threshold),
     };
     format!(

@@ -7,7 +7,7 @@ pub use options::{Options, Progress, ProgressFn, Stage};
 
 use std::path::{Path, PathBuf};
 
-use crate::bitmap::{load_memory, load_path, Compat, LoadOptions, Mask};
+use crate::bitmap::{load_memory, load_path, Cleaned, Compat, LoadOptions, Mask};
 use crate::contour::{trace, Contour, Convention};
 use crate::decompose::{decompose_reporting, Decomposition, OutlierRule};
 use crate::error::Error;
@@ -86,9 +86,11 @@ pub struct Fidelity {
 pub struct Vectorized {
     /// The foreground mask that was vectorized.
     pub mask: Mask,
-    /// The grey threshold used (foreground = grey < threshold before inversion); 0 for a
-    /// mask input.
+    /// The grey threshold used (foreground = grey < threshold before inversion; the mean of
+    /// the local thresholds for an adaptive one); 0 for a mask input.
     pub threshold: u8,
+    /// What [`Options::turdsize`] dropped.
+    pub cleaned: Cleaned,
     /// The contours and their pieces, each with its exact certificate.
     pub decomposition: Decomposition,
     /// The SVG document and its statistics, unless [`Options::svg`] is `None`.
@@ -144,17 +146,22 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
         compat: options.compat,
         max_pixels: options.max_pixels,
         max_memory: options.max_memory,
+        turdsize: options.turdsize,
     };
-    let (mask, threshold) = match source {
+    let (mask, threshold, cleaned) = match source {
         Source::Path(path) => {
             let l = load_path(path, &load)?;
-            (l.mask, l.threshold)
+            (l.mask, l.threshold, l.cleaned)
         }
         Source::Bytes(bytes) => {
             let l = load_memory(bytes, &load)?;
-            (l.mask, l.threshold)
+            (l.mask, l.threshold, l.cleaned)
         }
-        Source::Mask(mask) => (mask.clone(), 0),
+        Source::Mask(mask) => {
+            let mut mask = mask.clone();
+            let cleaned = mask.clean(options.turdsize);
+            (mask, 0, cleaned)
+        }
     };
     let ipol = options.compat == Compat::Ipol;
     let (convention, rule) = if ipol {
@@ -226,6 +233,7 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
     Ok(Vectorized {
         mask,
         threshold,
+        cleaned,
         decomposition: d,
         svg,
         fidelity,

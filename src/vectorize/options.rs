@@ -55,6 +55,10 @@ pub struct Options {
     pub threshold: Option<Threshold>,
     /// Light foreground on a dark background. Ignored for a mask input.
     pub invert: bool,
+    /// Drop specks and fill holes whose border encloses at most this many pixels, after
+    /// thresholding (potrace's turdsize, see [`Mask::clean`](crate::Mask::clean)); also
+    /// applied to a mask input. Default 0: the mask is kept exactly.
+    pub turdsize: u64,
     /// Whose conventions: layertrace's, or the IPOL reference program's (grey levels,
     /// 4-connected objects, crack-following borders, outliers of any colour).
     pub compat: Compat,
@@ -86,6 +90,7 @@ impl Default for Options {
             model: Model::Conic,
             threshold: None,
             invert: false,
+            turdsize: 0,
             compat: Compat::Default,
             svg: Some(SvgOptions::default()),
             fidelity: false,
@@ -106,6 +111,7 @@ impl fmt::Debug for Options {
             .field("model", &self.model)
             .field("threshold", &self.threshold)
             .field("invert", &self.invert)
+            .field("turdsize", &self.turdsize)
             .field("compat", &self.compat)
             .field("svg", &self.svg)
             .field("fidelity", &self.fidelity)
@@ -136,6 +142,12 @@ impl Options {
     /// Light foreground on a dark background.
     pub fn invert(mut self, invert: bool) -> Options {
         self.invert = invert;
+        self
+    }
+
+    /// Drop specks and holes of at most `turdsize` pixels.
+    pub fn turdsize(mut self, turdsize: u64) -> Options {
+        self.turdsize = turdsize;
         self
     }
 
