@@ -231,7 +231,9 @@ fn svg_parses_and_is_well_formed() {
             .split('"')
             .next()
             .expect("d");
-        for num in d
+        // Numbers are separated by a command letter, a space or their own minus sign.
+        let spaced = d.replace('-', " -");
+        for num in spaced
             .split(|c: char| c.is_ascii_alphabetic() || c == ' ')
             .filter(|s| !s.is_empty())
         {

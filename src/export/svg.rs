@@ -129,32 +129,63 @@ fn point(p: Point, precision: usize, s: &mut String) {
     number(p.y, precision, s);
 }
 
-/// Appends the path data (`M … Z`) of one contour.
+/// Appends one number, separated from what precedes it by a space unless a command letter
+/// or its own minus sign separates it.
+fn push_number(v: f64, precision: usize, after_number: bool, s: &mut String) {
+    let start = s.len();
+    number(v, precision, s);
+    // No leading zero: `.5`, `-.25` (most relative coordinates are below one pixel).
+    let sign = usize::from(s[start..].starts_with('-'));
+    if s[start + sign..].starts_with("0.") {
+        s.remove(start + sign);
+    }
+    if after_number && sign == 0 {
+        s.insert(start, ' ');
+    }
+}
+
+/// Appends the path data (`M … Z`) of one contour, compactly: coordinates relative to the
+/// pen (`l`, `h`, `v`, `q`, `c`; `M` and `A` absolute), a command letter only when it
+/// changes, a space only where no minus sign separates two numbers, and no final line back
+/// to the start (`Z` draws it).
+///
+/// Exact: every point is on the 2^-grid grid, so each difference is a dyadic number with at
+/// most `precision` decimals, written exactly, and the sum a renderer forms again (in `f64`
+/// in usvg, in `f32` in Skia: exact below 2^24 grid units) is the point itself.
 fn write_path_data(cp: &ContourPath, precision: usize, s: &mut String) {
     if cp.commands.is_empty() {
         return;
     }
     s.push('M');
     point(cp.start, precision, s);
+    let mut pen = cp.start;
+    let mut last = 'M';
     for c in &cp.commands {
-        match *c {
+        // (letter, relative numbers)
+        let mut nums = [0.0f64; 6];
+        let (letter, count) = match *c {
             PathCommand::Line(p) => {
-                s.push('L');
-                point(p, precision, s);
+                let d = p - pen;
+                if d.y == 0.0 {
+                    nums[0] = d.x;
+                    ('h', 1)
+                } else if d.x == 0.0 {
+                    nums[0] = d.y;
+                    ('v', 1)
+                } else {
+                    nums[..2].copy_from_slice(&[d.x, d.y]);
+                    ('l', 2)
+                }
             }
             PathCommand::Quad(c1, p) => {
-                s.push('Q');
-                point(c1, precision, s);
-                s.push(' ');
-                point(p, precision, s);
+                let (a, b) = (c1 - pen, p - pen);
+                nums[..4].copy_from_slice(&[a.x, a.y, b.x, b.y]);
+                ('q', 4)
             }
             PathCommand::Cubic(c1, c2, p) => {
-                s.push('C');
-                point(c1, precision, s);
-                s.push(' ');
-                point(c2, precision, s);
-                s.push(' ');
-                point(p, precision, s);
+                let (a, b, e) = (c1 - pen, c2 - pen, p - pen);
+                nums.copy_from_slice(&[a.x, a.y, b.x, b.y, e.x, e.y]);
+                ('c', 6)
             }
             PathCommand::Arc(a) => {
                 s.push('A');
@@ -165,10 +196,29 @@ fn write_path_data(cp: &ContourPath, precision: usize, s: &mut String) {
                 number(a.x_rotation.to_degrees().rem_euclid(360.0), precision, s);
                 let _ = write!(s, " {} {} ", u8::from(a.large_arc), u8::from(a.sweep));
                 point(a.to, precision, s);
+                pen = a.to;
+                last = 'A';
+                continue;
             }
+        };
+        let repeat = letter == last;
+        if !repeat {
+            s.push(letter);
         }
+        for (k, &v) in nums[..count].iter().enumerate() {
+            push_number(v, precision, repeat || k > 0, s);
+        }
+        last = letter;
+        pen = c.end();
     }
     s.push('Z');
+}
+
+/// Drops a final line back to the start: `Z` draws it.
+fn drop_closing_line(cp: &mut ContourPath) {
+    if cp.commands.len() > 2 && cp.commands.last() == Some(&PathCommand::Line(cp.start)) {
+        cp.commands.pop();
+    }
 }
 
 /// Escapes the five XML special characters of an attribute value.
@@ -238,6 +288,7 @@ pub(crate) fn svg_document_reporting(
             .map(|(k, contour)| {
                 let pieces = d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
                 let mut cp = contour_path(contour, pieces, &basis, &outline);
+                drop_closing_line(&mut cp);
                 let mut data = String::new();
                 write_path_data(&cp, precision, &mut data);
                 // Only the counts are kept: the commands are written.
@@ -342,11 +393,8 @@ mod tests {
             OutlierRule::NotInPiece,
         );
         let out = svg_document(&d, 3, 3, &SvgOptions::default());
-        assert!(
-            out.svg.contains("d=\"M2 1L1 1L1 2L2 2L2 1Z\""),
-            "{}",
-            out.svg
-        );
+        // Relative, compact, the closing line left to `Z`.
+        assert!(out.svg.contains("d=\"M2 1h-1v1h1Z\""), "{}", out.svg);
         assert_eq!(fidelity(&out.svg, &mask).unwrap().differing, 0);
     }
 
