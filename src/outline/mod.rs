@@ -64,7 +64,7 @@ pub struct OutlineOptions {
     /// Largest distance (pixels) of fitted cubics to their curve; at least 0.001.
     pub tolerance: f64,
     /// Curve pieces (not lines) whose curve passes closer than this (pixels) to a pixel
-    /// centre are drawn as their polygon without trying the curve. Default [`DEFAULT_MIN_CLEARANCE`]; 0 lets the
+    /// centre are drawn as their polygon without trying the curve. Default 1/32 px; 0 lets the
     /// renderer check decide for every curve.
     pub min_clearance: f64,
     /// Points are multiples of `2^-grid` px; at most [`MAX_GRID`].
