@@ -53,7 +53,7 @@ pub struct Args {
     #[arg(short, long, value_name = "OUT.svg|pdf|eps")]
     pub output: Option<PathBuf>,
 
-    /// Write each input's SVG into DIR as NAME.svg (NAME: the input's file name without its
+    /// Write each input's drawing into DIR as NAME.svg (or .pdf, .eps: --out-format; NAME: the input's file name without its
     /// extension; DIR is created if missing). Inputs are processed in parallel; a failed
     /// input is named on standard error, the others are still written, and the exit code is 1.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["output", "json", "decomposition", "diff"])]

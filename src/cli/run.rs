@@ -167,12 +167,13 @@ pub fn one(
     let picture_out = add("--decomposition", outputs.picture.as_ref())?;
     let diff_out = add("--diff", outputs.diff.as_ref())?;
 
-    let v = vectorize(input, options)?;
-    if let (Some(id), Some(json)) = (json_out, &v.json) {
-        outs.write(id, json.clone().into_bytes())?;
+    // The outputs are moved out of `v`, not copied: an SVG or JSON can be hundreds of MB.
+    let mut v = vectorize(input, options)?;
+    if let (Some(id), Some(json)) = (json_out, v.json.take()) {
+        outs.write(id, json.into_bytes())?;
     }
-    if let (Some(id), Some(png)) = (picture_out, &v.picture) {
-        outs.write(id, png.clone())?;
+    if let (Some(id), Some(png)) = (picture_out, v.picture.take()) {
+        outs.write(id, png)?;
     }
     if let (Some(id), Some(path), Some(f)) = (diff_out, &outputs.diff, &v.fidelity) {
         let bytes =
@@ -190,9 +191,9 @@ pub fn one(
     if args.report {
         report += &self::report(&v)?;
     }
-    if let (Some(id), Some(path), Some(svg)) = (svg_out, &outputs.svg, v.svg.as_ref()) {
+    if let (Some(id), Some(path), Some(svg)) = (svg_out, &outputs.svg, v.svg.as_mut()) {
         let format = Format::from_path(path).unwrap_or(Format::Svg);
-        outs.write(id, document_bytes(svg.svg.clone(), format)?)?;
+        outs.write(id, document_bytes(std::mem::take(&mut svg.svg), format)?)?;
     }
     outs.commit()?;
     let name = if stdin {

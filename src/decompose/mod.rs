@@ -322,7 +322,11 @@ pub(crate) fn decompose_reporting(
                     done(n);
                     (pieces, rec.stats().since(&before))
                 }
-                None => (vec![Vec::new(); chunk.len()], Stats::default()),
+                None => {
+                    let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
+                    done(n);
+                    (vec![Vec::new(); chunk.len()], Stats::default())
+                }
             },
         )
         .collect();

@@ -7,8 +7,10 @@
 //! `(x, y)` = the square `[x, x+1] × [y, y+1]`), holding one `<path d="…" fill="…"
 //! fill-rule="nonzero"/>` with all contours (none for an image without foreground), and
 //! nothing else. Every number is a multiple of `2^-grid` ([`SvgOptions::grid`]) written
-//! exactly (at most `grid` decimals, trailing zeros stripped); all commands are absolute;
-//! there is no `A` (arcs are written as the cubics the outline checked).
+//! exactly (at most `grid` decimals, trailing zeros and leading zeros stripped); each
+//! contour starts with an absolute `M`, the other commands are relative (`l`, `h`, `v`,
+//! `q`, `c`; see `write_path_data`); there is no `A` (arcs are written as the cubics the
+//! outline checked).
 //!
 //! # Fill rule
 //! Outer borders run counter-clockwise on screen, holes clockwise. `nonzero` is preferred

@@ -5,9 +5,11 @@
 //! cuts quadratics and cubics into `2^k` chords by forward differencing in fixed point and
 //! rounds vertices to 1/64 px (see [`crate::fidelity`]); its results do not change under a
 //! translation by whole pixels (all of its arithmetic is on differences and on 26.6 fixed
-//! point), and the mask is large enough that no edge is clipped, so the pixels painted here
-//! are those resvg paints for this contour in the whole document. Points are on the 1/64
-//! grid ([`super::builder`]), exact in `f32`.
+//! point), and the mask is large enough that no edge is clipped. In the document the whole
+//! `<path>` may poke out of the pixmap, and then tiny-skia clips every edge, which cuts
+//! curves at their extrema first: curved paths are filled both ways here (see [`Rendered`]),
+//! so the pixels they paint are those resvg paints for this contour in the whole document
+//! either way. Points are on the 1/64 grid ([`super::builder`]), exact in `f32`.
 
 use crate::curve::PathCommand;
 use crate::pixel::Pixel;
@@ -160,7 +162,6 @@ impl Rendered {
         // cut only where they cross the clip, outside this window.
         if commands.iter().any(|c| !matches!(c, PathCommand::Line(_))) {
             let Some(clipped) = classes(true) else {
-                out.class = None;
                 return out;
             };
             for (c, k) in class.iter_mut().zip(clipped) {
@@ -327,8 +328,9 @@ pub(crate) fn finely_flattened(start: Point, commands: &[PathCommand]) -> Option
     Some(out)
 }
 
-/// The pixels that `path` and `reference` paint differently, row by row (rows that agree
-/// are compared as byte slices).
+/// The pixels that `path` and `reference` class differently (winding 0, exactly the
+/// orientation, or wrong: see [`Rendered`]), row by row (rows that agree are compared as
+/// byte slices).
 pub(crate) fn misplaced_pixels(reference: &Rendered, path: &Rendered) -> Vec<Pixel> {
     let x0 = reference.x0.min(path.x0);
     let y0 = reference.y0.min(path.y0);

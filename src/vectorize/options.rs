@@ -30,7 +30,9 @@ pub struct Progress {
     pub total: u64,
 }
 
-/// A callback told of progress, from any worker thread, a few hundred times per stage at most.
+/// A callback told of progress, from any worker thread: once per chunk of 256 contours while
+/// decomposing, once per group of 4 096 while drawing. Calls from different threads may
+/// arrive out of order.
 pub type ProgressFn = Arc<dyn Fn(Progress) + Send + Sync>;
 
 /// Options of [`vectorize`](crate::vectorize), built from [`Options::default`] (the CLI's
@@ -57,7 +59,9 @@ pub struct Options {
     pub invert: bool,
     /// Drop specks and fill holes whose border encloses at most this many pixels, after
     /// thresholding (potrace's turdsize, see [`Mask::clean`](crate::Mask::clean)); also
-    /// applied to a mask input. Default 0: the mask is kept exactly.
+    /// applied to a mask input. Default 0: the mask is kept exactly. Meant for layertrace's
+    /// own convention (8-connected objects, 4-connected holes); with [`Compat::Ipol`]'s
+    /// 4-connected objects a dropped border may not be a whole contour.
     pub turdsize: u64,
     /// Whose conventions: layertrace's, or the IPOL reference program's (grey levels,
     /// 4-connected objects, crack-following borders, outliers of any colour).

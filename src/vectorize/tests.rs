@@ -102,7 +102,16 @@ fn pool_and_progress() {
             .iter()
             .all(|p| p.total == contours && p.done <= p.total));
     }
-    assert_eq!(calls.load(Ordering::Relaxed), seen.len() as u64);
+    // One thread: each stage counts up, and is told at most once per chunk of contours.
+    for stage in [Stage::Decompose, Stage::Draw] {
+        let done: Vec<u64> = seen
+            .iter()
+            .filter(|p| p.stage == stage)
+            .map(|p| p.done)
+            .collect();
+        assert!(done.windows(2).all(|w| w[0] < w[1]), "{stage:?}: {done:?}");
+    }
+    assert!(calls.load(Ordering::Relaxed) <= 2 * (contours / 256 + 1));
 }
 
 #[test]
