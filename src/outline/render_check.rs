@@ -50,19 +50,23 @@ impl Rendered {
     /// Fills the closed path `M start commands Z`.
     #[cfg(test)]
     pub(crate) fn new(start: Point, commands: &[PathCommand]) -> Rendered {
-        Rendered::within_margin(start, commands, None, 0)
+        Rendered::within_margin(start, commands, None, 0, false)
     }
 
     /// [`Rendered::new`] on a window covering `like`'s too (then rows of the two line up,
     /// and [`misplaced_pixels`] compares them as byte slices).
     pub(crate) fn like(start: Point, commands: &[PathCommand], like: &Rendered) -> Rendered {
-        Rendered::within_margin(start, commands, Some(like), 0)
+        Rendered::within_margin(start, commands, Some(like), 0, false)
     }
 
     /// [`Rendered::new`] with `margin` more pixels round the window (a reference that
     /// paths drawn [`Rendered::like`] it fit in, so that their rows line up).
+    ///
+    /// For a reference that never crosses itself (a contour's crack polygon: pixel edges,
+    /// each once, meeting only at corners), whose winding is 0 or its orientation: filled
+    /// once.
     pub(crate) fn with_margin(start: Point, commands: &[PathCommand], margin: i64) -> Rendered {
-        Rendered::within_margin(start, commands, None, margin)
+        Rendered::within_margin(start, commands, None, margin, true)
     }
 
     fn within_margin(
@@ -70,6 +74,7 @@ impl Rendered {
         commands: &[PathCommand],
         like: Option<&Rendered>,
         margin: i64,
+        simple: bool,
     ) -> Rendered {
         let (mut lo, mut hi) = (start, start);
         let mut grow = |p: Point| {
@@ -135,6 +140,16 @@ impl Rendered {
             );
             Some(mask)
         };
+        if simple {
+            out.class = fill(None, false).map(|alone| {
+                alone
+                    .data()
+                    .iter()
+                    .map(|&a| if a != 0 { INSIDE } else { OUTSIDE })
+                    .collect()
+            });
+            return out;
+        }
         let frame = Some((width as f32, height as f32, orientation));
         let classes = |clipped: bool| -> Option<Vec<u8>> {
             let (alone, framed) = (fill(None, clipped)?, fill(frame, clipped)?);
