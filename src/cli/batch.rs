@@ -3,7 +3,7 @@
 
 use super::args::Args;
 use super::progress::Bar;
-use super::run::{one, options, Outputs};
+use super::run::{one, options, Drawing, Outputs};
 use layertrace::{Error, Format};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -111,24 +111,20 @@ pub fn run(args: &Args, dir: &Path, pool: Option<Arc<rayon::ThreadPool>>) -> Res
         .as_ref()
         .map_or_else(rayon::current_num_threads, |p| p.current_num_threads());
     let concurrent = threads.clamp(1, files.len().max(1)) as u64;
-    let mut opts = options(
-        args,
-        &Outputs {
-            svg: Some(PathBuf::new()),
-            ..Outputs::default()
-        },
-        pool.clone(),
-    );
-    // The memory limit is shared by the inputs processed at the same time.
-    opts.max_memory /= concurrent;
     let bar = Bar::new(files.len() as u64, "files", args.quiet);
     let failed = AtomicUsize::new(0);
     let work = || {
         files.par_iter().zip(&dests).for_each(|(file, dest)| {
             let outputs = Outputs {
-                svg: Some(dest.clone()),
+                svg: Some(Drawing {
+                    path: dest.clone(),
+                    format: args.out_format,
+                }),
                 ..Outputs::default()
             };
+            let mut opts = options(args, &outputs, pool.clone());
+            // The memory limit is shared by the inputs processed at the same time.
+            opts.max_memory /= concurrent;
             match one(args, file, &outputs, &opts) {
                 Ok(done) => {
                     let text = done.text(args.quiet);

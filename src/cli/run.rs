@@ -12,11 +12,20 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
+/// The drawing of one input: where, and in which format.
+#[derive(Clone, Debug)]
+pub struct Drawing {
+    /// The file ('-' for standard output).
+    pub path: PathBuf,
+    /// SVG, PDF or EPS.
+    pub format: Format,
+}
+
 /// The outputs of one input.
 #[derive(Clone, Debug, Default)]
 pub struct Outputs {
-    /// The SVG.
-    pub svg: Option<PathBuf>,
+    /// The drawing (SVG, PDF or EPS).
+    pub svg: Option<Drawing>,
     /// The JSON of the decomposition.
     pub json: Option<PathBuf>,
     /// The decomposition picture.
@@ -40,9 +49,13 @@ pub fn run(args: &Args) -> Result<bool, Error> {
         None => None,
     };
     // The formats named by the outputs' extensions, before anything else (usage errors).
-    if let Some(path) = &args.output {
-        Format::from_path(path).map_err(|e| naming("-o", e))?;
-    }
+    let drawing = match &args.output {
+        Some(path) => Some(Drawing {
+            path: path.clone(),
+            format: Format::from_path(path).map_err(|e| naming("-o", e))?,
+        }),
+        None => None,
+    };
     for (flag, path) in [
         ("--decomposition", &args.decomposition),
         ("--diff", &args.diff),
@@ -55,7 +68,7 @@ pub fn run(args: &Args) -> Result<bool, Error> {
         None => {
             let input = batch::single_input(args)?;
             let outputs = Outputs {
-                svg: args.output.clone(),
+                svg: drawing,
                 json: args.json.clone(),
                 picture: args.decomposition.clone(),
                 diff: args.diff.clone(),
@@ -162,7 +175,7 @@ pub fn one(
         named.push((flag, path.clone()));
         Ok(Some(id))
     };
-    let svg_out = add("-o", outputs.svg.as_ref())?;
+    let svg_out = add("-o", outputs.svg.as_ref().map(|d| &d.path))?;
     let json_out = add("--json", outputs.json.as_ref())?;
     let picture_out = add("--decomposition", outputs.picture.as_ref())?;
     let diff_out = add("--diff", outputs.diff.as_ref())?;
@@ -191,9 +204,11 @@ pub fn one(
     if args.report {
         report += &self::report(&v)?;
     }
-    if let (Some(id), Some(path), Some(svg)) = (svg_out, &outputs.svg, v.svg.as_mut()) {
-        let format = Format::from_path(path).unwrap_or(Format::Svg);
-        outs.write(id, document_bytes(std::mem::take(&mut svg.svg), format)?)?;
+    if let (Some(id), Some(drawing), Some(svg)) = (svg_out, &outputs.svg, v.svg.as_mut()) {
+        outs.write(
+            id,
+            document_bytes(std::mem::take(&mut svg.svg), drawing.format)?,
+        )?;
     }
     outs.commit()?;
     let name = if stdin {
