@@ -2,40 +2,17 @@
 //! failures named and counted with the others still written, and the arguments that cannot
 //! work refused before any work.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+mod common;
+
+use common::{cli_in, names, repo};
+
+use std::path::Path;
 
 const SAMPLES: [&str; 3] = [
     "samples/glyph_g_liberationserif_cap120.png",
     "samples/glyph_at_dejavusans_cap40.png",
     "samples/digits_liberationsans_cap40.png",
 ];
-
-/// Runs the CLI in `dir`; returns (exit code, stderr).
-fn cli_in(dir: &Path, args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_layertrace"))
-        .current_dir(dir)
-        .args(args)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(!err.contains("panicked"), "{args:?}: {err}");
-    (out.status.code().unwrap_or(-1), err)
-}
-
-fn repo(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
 
 /// A scratch folder `in/` holding copies of the samples.
 fn inputs() -> tempfile::TempDir {

@@ -6,20 +6,16 @@
 //! pass, except when the environment variable `CI` is set: then they fail, so CI (which
 //! installs them, see `.ci/run`) cannot skip them silently.
 
+mod common;
+
+use common::{bin, names, repo};
+
 use kurbo::Shape;
 use layertrace::{document_bytes, load_path, Format, LoadOptions, Mask};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 const SAMPLE: &str = "samples/glyph_g_liberationserif_cap120.png";
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_layertrace"))
-}
-
-fn repo(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
-}
 
 fn scratch() -> tempfile::TempDir {
     tempfile::Builder::new()
@@ -41,16 +37,6 @@ fn cli_in(dir: &Path, args: &[&str]) -> (i32, Vec<u8>, String) {
         out.stdout,
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
-}
-
-/// The names in `dir` (temporaries included), sorted.
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
 }
 
 #[test]

@@ -1,50 +1,21 @@
 //! Output files through the command line: never the input, never two outputs to one place,
 //! all of them or none, nothing left behind on signals, and every option checked when parsed.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::{bin, cli_in, names, repo};
+
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 const SAMPLE: &str = "samples/glyph_g_liberationserif_cap120.png";
 const BIG: &str = "samples/syn_big3000_many_shapes.png";
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_layertrace"))
-}
-
-/// Runs the CLI in `dir`, returns (exit code, stderr).
-fn cli_in(dir: &Path, args: &[&str]) -> (i32, String) {
-    let out = bin()
-        .current_dir(dir)
-        .args(args)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 fn scratch() -> tempfile::TempDir {
     tempfile::Builder::new()
         .prefix("layertrace-outputs-")
         .tempdir()
         .unwrap()
-}
-
-fn repo(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
-}
-
-/// The names in `dir`, sorted.
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
 }
 
 /// One line on standard error, starting with the tool's name.
