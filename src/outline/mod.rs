@@ -38,6 +38,7 @@ mod vertices;
 
 pub use joins::JUNCTION_MAX_DISTANCE;
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
+pub use render_check::EdgeClipping;
 
 use crate::contour::Contour;
 use crate::decompose::Piece;
@@ -45,7 +46,7 @@ use crate::model::Basis;
 use builder::Builder;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
-use render_check::{finely_flattened, misplaced_pixels, nearest_points, points_near, Rendered};
+use render_check::{finely_flattened, misplaced_pixels, nearest_points, points_near, Reference};
 use smooth::smooth_polygon;
 use stretch::{Drawing, Stretch, Stretcher, Unused};
 
@@ -69,6 +70,10 @@ pub struct OutlineOptions {
     pub min_clearance: f64,
     /// Points are multiples of `2^-grid` px; at most [`MAX_GRID`].
     pub grid: u8,
+    /// Whether tiny-skia will cut the document's curves at their extrema (its edge clipper
+    /// runs when the document's path reaches the pixmap's border); [`EdgeClipping::Unknown`]
+    /// checks curves both ways.
+    pub clipping: EdgeClipping,
 }
 
 impl Default for OutlineOptions {
@@ -77,6 +82,7 @@ impl Default for OutlineOptions {
             tolerance: 0.05,
             min_clearance: DEFAULT_MIN_CLEARANCE,
             grid: 4,
+            clipping: EdgeClipping::Unknown,
         }
     }
 }
@@ -144,7 +150,7 @@ pub fn contour_path(
     let mut cracked = vec![false; stretches.len()];
     let mut keep_bridge = vec![false; stretches.len()];
     let mut memo = Memo::default();
-    let mut reference: Option<Rendered> = None;
+    let mut reference: Option<Reference> = None;
     for _ in 0..MAX_ROUNDS {
         let built = build(
             points,
@@ -171,25 +177,27 @@ pub fn contour_path(
                 return finish(path, &stretches, fallbacks);
             }
             let reference = reference.get_or_insert_with(|| {
-                // Curves stay within STRAY_MARGIN (2 px) of their pixels: two more pixels
-                // round the reference make every drawing's window the same.
                 let c = cracks_path(points);
-                Rendered::with_margin(c.start, &c.commands, 2)
+                Reference::new(c.start, &c.commands)
             });
-            let rendered = Rendered::like(path.start, &path.commands, reference);
-            let mut wrong = misplaced_pixels(reference, &rendered);
+            let mut wrong = misplaced_pixels(reference, path.start, &path.commands, opts.clipping);
             if wrong.is_empty() {
                 // Exact in tiny-skia; also with the true curves (other renderers).
                 if let Some(fine) = finely_flattened(path.start, &path.commands) {
-                    wrong =
-                        misplaced_pixels(reference, &Rendered::like(path.start, &fine, reference));
+                    wrong = misplaced_pixels(reference, path.start, &fine, EdgeClipping::Never);
                 }
             }
             if wrong.is_empty() {
                 let mut path = path;
                 if built.smooth.iter().any(|&t| t) {
-                    path.commands =
-                        smooth_polygon(path.start, &path.commands, &built.smooth, reference, grid);
+                    path.commands = smooth_polygon(
+                        path.start,
+                        &path.commands,
+                        &built.smooth,
+                        reference,
+                        grid,
+                        opts.clipping,
+                    );
                 }
                 return finish(path, &stretches, fallbacks);
             }

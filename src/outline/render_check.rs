@@ -1,258 +1,254 @@
-//! What tiny-skia draws of one contour's path, and the contour points it gets wrong.
-//!
-//! The path is filled with tiny-skia itself, without anti-aliasing (what resvg does under
-//! `shape-rendering="crispEdges"`), into a mask covering the path's bounding box. tiny-skia
-//! cuts quadratics and cubics into `2^k` chords by forward differencing in fixed point and
-//! rounds vertices to 1/64 px (see [`crate::fidelity`]); its results do not change under a
-//! translation by whole pixels (all of its arithmetic is on differences and on 26.6 fixed
-//! point), and the mask is large enough that no edge is clipped. In the document the whole
-//! `<path>` may poke out of the pixmap, and then tiny-skia clips every edge, which cuts
-//! curves at their extrema first: curved paths are filled both ways here (see [`Rendered`]),
-//! so the pixels they paint are those resvg paints for this contour in the whole document
-//! either way. Points are on the 1/64 grid ([`super::builder`]), exact in `f32`.
+//! The pixels tiny-skia draws wrong for one contour's path: one fill of the path and the
+//! contour's crack polygon reversed (see [`misplaced_pixels`]).
 
 use crate::curve::PathCommand;
 use crate::pixel::Pixel;
 use kurbo::Point;
+use std::cell::RefCell;
 
-/// The pixels tiny-skia paints for one closed path (nonzero rule), within a window, *with
-/// their winding*: whether the path winds 0 round each pixel centre, exactly its own
-/// orientation `s` (±1: +1 for a counter-clockwise path on screen, as outer borders are
-/// drawn), or anything else.
-///
-/// A path can paint the right pixels alone and still be wrong in the document: a twisted
-/// lobe (a self-crossing) winds `−s` round the pixels it covers, a curl `2s`; a lone
-/// nonzero fill paints them like the rest, but in the document they add to the windings of
-/// the other contours instead of cancelling them (a hole's path meeting its outer border's).
-/// So the path is filled twice: alone (painted iff the winding is not 0), and with a
-/// rectangle round the whole window wound `−s` (painted iff the winding is not `s`). A
-/// pixel is then [`OUTSIDE`], [`INSIDE`] or [`WRONG`], and comparing two paths compares
-/// these classes pixel by pixel, which is what the sum of all contours needs.
-pub(crate) struct Rendered {
-    x0: i64,
-    y0: i64,
-    width: i64,
-    height: i64,
-    /// The orientation `s` (+1 or −1) the winding is compared with.
-    orientation: i8,
-    /// The class of every pixel of the window, row by row.
-    class: Option<Vec<u8>>,
+thread_local! {
+    /// Buffers of finished renders, reused by the next ones on the same thread. A contour's
+    /// window is often above malloc's mmap threshold (128 KiB), and a fresh mapping costs a
+    /// page fault per 4 KiB: 12% of the whole run on the shared samples before they were
+    /// reused.
+    static SPARE: RefCell<Vec<Vec<u8>>> = const { RefCell::new(Vec::new()) };
 }
 
-/// The path winds 0 round the pixel centre.
-const OUTSIDE: u8 = 0;
-/// The path winds exactly its orientation round the pixel centre.
-const INSIDE: u8 = 1;
-/// Any other winding: wrong wherever the pixel is.
-const WRONG: u8 = 2;
+/// Most buffers kept per thread, and the largest kept (bytes): a huge contour's windows are
+/// rare, and keeping them would hold their memory to the end of the run.
+const SPARE_COUNT: usize = 6;
+const SPARE_MAX_BYTES: usize = 1 << 22;
 
-impl Rendered {
-    /// Fills the closed path `M start commands Z`.
-    #[cfg(test)]
-    pub(crate) fn new(start: Point, commands: &[PathCommand]) -> Rendered {
-        Rendered::within_margin(start, commands, None, 0, false)
+/// `len` zero bytes, in a reused buffer when one is spare.
+fn zeroed(len: usize) -> Vec<u8> {
+    let mut v = SPARE.with(|s| s.borrow_mut().pop()).unwrap_or_default();
+    v.clear();
+    v.resize(len, 0);
+    v
+}
+
+/// Gives a buffer back for [`zeroed`] to reuse.
+fn recycle(v: Vec<u8>) {
+    if v.capacity() == 0 || v.capacity() > SPARE_MAX_BYTES {
+        return;
     }
+    SPARE.with(|s| {
+        let mut s = s.borrow_mut();
+        if s.len() < SPARE_COUNT {
+            s.push(v);
+        }
+    });
+}
 
-    /// [`Rendered::new`] on a window covering `like`'s too (then rows of the two line up,
-    /// and [`misplaced_pixels`] compares them as byte slices).
-    pub(crate) fn like(start: Point, commands: &[PathCommand], like: &Rendered) -> Rendered {
-        Rendered::within_margin(start, commands, Some(like), 0, false)
+/// How tiny-skia will treat the edges of the document's one `<path>` (every contour).
+///
+/// tiny-skia (as Skia) draws curves differently when the path's bounds, rounded out by
+/// about half a pixel, leave the pixmap: its edge clipper then cuts every cubic at its x and
+/// y extrema, and quadratics at theirs, before subdividing, which moves the chords. Lines
+/// are only cut where they cross the pixmap's border.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EdgeClipping {
+    /// The document's path stays well inside the pixmap: curves are subdivided whole.
+    Never,
+    /// The document's path reaches the pixmap's border: curves are cut at their extrema.
+    Always,
+    /// Not known: a curved path must be drawn right both ways.
+    #[default]
+    Unknown,
+}
+
+impl EdgeClipping {
+    /// The two ways of drawing curves (unclipped, clipped) this asks to check.
+    fn modes(self) -> &'static [bool] {
+        match self {
+            EdgeClipping::Never => &[false],
+            EdgeClipping::Always => &[true],
+            EdgeClipping::Unknown => &[false, true],
+        }
     }
+}
 
-    /// [`Rendered::new`] with `margin` more pixels round the window (a reference that
-    /// paths drawn [`Rendered::like`] it fit in, so that their rows line up).
-    ///
-    /// For a reference that never crosses itself (a contour's crack polygon: pixel edges,
-    /// each once, meeting only at corners), whose winding is 0 or its orientation: filled
-    /// once.
-    pub(crate) fn with_margin(start: Point, commands: &[PathCommand], margin: i64) -> Rendered {
-        Rendered::within_margin(start, commands, None, margin, true)
-    }
+/// What a contour's path must paint: its crack polygon (pixel edges, each once, meeting only
+/// at corners), which winds its orientation `s` round exactly the pixels the contour
+/// encloses and 0 round every other pixel.
+pub(crate) struct Reference {
+    start: Point,
+    /// The polygon's vertices after `start`, in order.
+    vertices: Vec<Point>,
+    lo: Point,
+    hi: Point,
+}
 
-    fn within_margin(
-        start: Point,
-        commands: &[PathCommand],
-        like: Option<&Rendered>,
-        margin: i64,
-        simple: bool,
-    ) -> Rendered {
+impl Reference {
+    /// The reference of the closed polygon `M start commands Z` (lines only; other commands
+    /// count by their end point).
+    pub(crate) fn new(start: Point, commands: &[PathCommand]) -> Reference {
+        let vertices: Vec<Point> = commands.iter().map(|c| c.end()).collect();
         let (mut lo, mut hi) = (start, start);
-        let mut grow = |p: Point| {
+        for &p in &vertices {
             lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
             hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-        };
-        for c in commands {
-            match *c {
-                PathCommand::Line(p) => grow(p),
-                PathCommand::Quad(a, p) => {
-                    grow(a);
-                    grow(p);
-                }
-                PathCommand::Cubic(a, b, p) => {
-                    grow(a);
-                    grow(b);
-                    grow(p);
-                }
-                PathCommand::Arc(a) => {
-                    // Not produced by the builder; bound the whole ellipse.
-                    let r = a.radii.x.abs().max(a.radii.y.abs());
-                    grow(a.to - kurbo::Vec2::new(r, r) * 2.0);
-                    grow(a.to + kurbo::Vec2::new(r, r) * 2.0);
-                }
-            }
         }
-        // Two pixels of margin: the scan converter keeps clipping off only when the
-        // conservatively rounded bounds are inside the mask.
-        let mut x0 = lo.x.floor() as i64 - 2 - margin;
-        let mut y0 = lo.y.floor() as i64 - 2 - margin;
-        let mut x1 = hi.x.ceil() as i64 + 2 + margin;
-        let mut y1 = hi.y.ceil() as i64 + 2 + margin;
-        if let Some(r) = like {
-            x0 = x0.min(r.x0);
-            y0 = y0.min(r.y0);
-            x1 = x1.max(r.x0 + r.width);
-            y1 = y1.max(r.y0 + r.height);
+        Reference {
+            start,
+            vertices,
+            lo,
+            hi,
         }
-        let (width, height) = (x1 - x0, y1 - y0);
-        let orientation = match like {
-            Some(r) => r.orientation,
-            None => orientation(start, commands),
-        };
-        let mut out = Rendered {
-            x0,
-            y0,
-            width,
-            height,
-            orientation,
-            class: None,
-        };
-        let (Ok(w), Ok(h)) = (u32::try_from(width), u32::try_from(height)) else {
-            return out;
-        };
-        let fill = |frame: Option<(f32, f32, i8)>, clipped: bool| {
-            let path = tiny_path(start, commands, x0 as f64, y0 as f64, frame, clipped)?;
-            let mut mask = tiny_skia::Mask::new(w, h)?;
-            mask.fill_path(
-                &path,
-                tiny_skia::FillRule::Winding,
-                false,
-                tiny_skia::Transform::identity(),
-            );
-            Some(mask)
-        };
-        if simple {
-            out.class = fill(None, false).map(|alone| {
-                alone
-                    .data()
-                    .iter()
-                    .map(|&a| if a != 0 { INSIDE } else { OUTSIDE })
-                    .collect()
-            });
-            return out;
-        }
-        let frame = Some((width as f32, height as f32, orientation));
-        let classes = |clipped: bool| -> Option<Vec<u8>> {
-            let (alone, framed) = (fill(None, clipped)?, fill(frame, clipped)?);
-            Some(
-                alone
-                    .data()
-                    .iter()
-                    .zip(framed.data())
-                    .map(|(&a, &f)| match (a != 0, f != 0) {
-                        (false, _) => OUTSIDE,
-                        (true, false) => INSIDE,
-                        (true, true) => WRONG,
-                    })
-                    .collect(),
-            )
-        };
-        let Some(mut class) = classes(false) else {
-            return out;
-        };
-        // tiny-skia (as Skia) draws curves differently when the whole path — in the
-        // document: every contour, one `<path>` — pokes out of the pixmap: its edge clipper
-        // then cuts every cubic at its x and y extrema and quadratics at theirs before
-        // subdividing, which moves the chords. Whether the document will is not known while
-        // one contour is drawn, so a path with curves must be right both ways. Lines are
-        // cut only where they cross the clip, outside this window.
-        if commands.iter().any(|c| !matches!(c, PathCommand::Line(_))) {
-            let Some(clipped) = classes(true) else {
-                return out;
-            };
-            for (c, k) in class.iter_mut().zip(clipped) {
-                if *c != k {
-                    *c = WRONG;
-                }
-            }
-        }
-        out.class = Some(class);
-        out
-    }
-
-    /// The class of the pixel: [`OUTSIDE`] out of the window, [`WRONG`] everywhere when
-    /// the path could not be filled.
-    fn class(&self, x: i64, y: i64) -> u8 {
-        let (x, y) = (x - self.x0, y - self.y0);
-        if x < 0 || y < 0 || x >= self.width || y >= self.height {
-            return OUTSIDE;
-        }
-        match &self.class {
-            Some(c) => c[(y * self.width + x) as usize],
-            None => WRONG,
-        }
-    }
-
-    /// True when the path winds exactly its orientation round the pixel's centre.
-    #[cfg(test)]
-    pub(crate) fn painted(&self, p: Pixel) -> bool {
-        self.class(p.x.into(), p.y.into()) == INSIDE
     }
 }
 
-/// The sign of the area the path's vertices and control points enclose (shoelace): +1 for
-/// counter-clockwise on screen (y down), as outer borders are drawn; −1 otherwise.
-fn orientation(start: Point, commands: &[PathCommand]) -> i8 {
-    let mut area = 0.0;
-    let mut pen = start;
-    let mut edge = |p: Point| {
-        area += pen.x * p.y - p.x * pen.y;
-        pen = p;
+/// The pixels whose centre the closed path `M start commands Z` winds round differently from
+/// `reference` (nonzero rule: 0 outside the reference, its orientation `s` inside), as
+/// tiny-skia draws it without anti-aliasing (resvg under `shape-rendering="crispEdges"`),
+/// with curves cut as `clipping` says (both ways for [`EdgeClipping::Unknown`]).
+///
+/// # One fill
+/// A path can paint the right pixels alone and still be wrong in the document: a twisted
+/// lobe (a self-crossing) winds `−s` round the pixels it covers, a curl `2s`; a lone nonzero
+/// fill paints them like the rest, but in the document they add to the windings of the
+/// other contours instead of cancelling them (a hole's path meeting its outer border's). The
+/// winding is what must be compared, and it is additive: tiny-skia's scan converter rounds
+/// each edge's crossing of a scanline by itself and sums the edges' directions left of each
+/// pixel centre. So the path and the reference *reversed*, filled together, wind
+/// `w_path − w_reference` round every centre, and the pixels painted are exactly those where
+/// the two differ. The mask covers both with two pixels to spare (the scan converter keeps
+/// clipping off only when the conservatively rounded bounds are inside the mask); tiny-skia's
+/// results do not change under a translation by whole pixels (all of its arithmetic is on
+/// differences and on 26.6 fixed point). Points are on the 1/64 grid
+/// ([`super::builder`]), exact in `f32`.
+///
+/// A path that cannot be filled (not finite, too large for tiny-skia's fixed point) is wrong
+/// at every pixel of the window.
+pub(crate) fn misplaced_pixels(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    clipping: EdgeClipping,
+) -> Vec<Pixel> {
+    let (mut lo, mut hi) = (reference.lo, reference.hi);
+    let mut grow = |p: Point| {
+        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
     };
+    grow(start);
     for c in commands {
         match *c {
-            PathCommand::Line(p) | PathCommand::Arc(kurbo::SvgArc { to: p, .. }) => edge(p),
+            PathCommand::Line(p) => grow(p),
             PathCommand::Quad(a, p) => {
-                edge(a);
-                edge(p);
+                grow(a);
+                grow(p);
             }
             PathCommand::Cubic(a, b, p) => {
-                edge(a);
-                edge(b);
-                edge(p);
+                grow(a);
+                grow(b);
+                grow(p);
+            }
+            PathCommand::Arc(a) => {
+                // Not produced by the builder; bound the whole ellipse.
+                let r = a.radii.x.abs().max(a.radii.y.abs());
+                grow(a.to - kurbo::Vec2::new(r, r) * 2.0);
+                grow(a.to + kurbo::Vec2::new(r, r) * 2.0);
             }
         }
     }
-    edge(start);
-    // Screen coordinates: counter-clockwise as seen has a negative shoelace sum.
-    if area <= 0.0 {
-        1
-    } else {
-        -1
+    if !(lo.x.is_finite() && lo.y.is_finite() && hi.x.is_finite() && hi.y.is_finite()) {
+        lo = reference.lo;
+        hi = reference.hi;
     }
+    let x0 = lo.x.floor() as i64 - 2;
+    let y0 = lo.y.floor() as i64 - 2;
+    let x1 = hi.x.ceil() as i64 + 2;
+    let y1 = hi.y.ceil() as i64 + 2;
+    let (width, height) = (x1 - x0, y1 - y0);
+    let everywhere = || -> Vec<Pixel> {
+        let mut all = Vec::new();
+        for y in y0..y1 {
+            for x in x0..x1 {
+                if let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) {
+                    all.push(Pixel::new(px, py));
+                }
+            }
+        }
+        all
+    };
+    let size = u32::try_from(width)
+        .ok()
+        .zip(u32::try_from(height).ok())
+        .and_then(|(w, h)| tiny_skia::IntSize::from_wh(w, h));
+    let Some(size) = size else {
+        return everywhere();
+    };
+    let len = (width * height) as usize;
+    let curved = commands.iter().any(|c| !matches!(c, PathCommand::Line(_)));
+    let modes = if curved { clipping.modes() } else { &[false] };
+    let mut wrong: Option<Vec<u8>> = None;
+    for &clipped in modes {
+        let painted = difference_path(reference, start, commands, x0 as f64, y0 as f64, clipped)
+            .and_then(|path| {
+                let mut mask = tiny_skia::Mask::from_vec(zeroed(len), size)?;
+                mask.fill_path(
+                    &path,
+                    tiny_skia::FillRule::Winding,
+                    false,
+                    tiny_skia::Transform::identity(),
+                );
+                Some(mask.take())
+            });
+        let Some(painted) = painted else {
+            if let Some(w) = wrong {
+                recycle(w);
+            }
+            return everywhere();
+        };
+        match &mut wrong {
+            None => wrong = Some(painted),
+            Some(w) => {
+                for (a, &b) in w.iter_mut().zip(&painted) {
+                    *a |= b;
+                }
+                recycle(painted);
+            }
+        }
+    }
+    let Some(wrong) = wrong else {
+        return Vec::new();
+    };
+    let mut bad = Vec::new();
+    let w = width as usize;
+    for (row, bytes) in wrong.chunks_exact(w).enumerate() {
+        if bytes.iter().all(|&b| b == 0) {
+            continue;
+        }
+        for (col, &b) in bytes.iter().enumerate() {
+            if b != 0 {
+                let (x, y) = (x0 + col as i64, y0 + row as i64);
+                if let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) {
+                    bad.push(Pixel::new(px, py));
+                }
+            }
+        }
+    }
+    recycle(wrong);
+    bad
 }
 
 /// The path translated by `(−dx, −dy)` (whole pixels: exact for grid points) as tiny-skia's,
-/// with the rectangle `(0, 0)–(w, h)` wound against `orientation` (see [`Rendered`]).
-fn tiny_path(
+/// followed by `reference` reversed, and — for the `clipped` way of drawing curves — a flat
+/// sliver just outside the window, which paints nothing but puts the path's bounds outside
+/// the mask, so that tiny-skia runs its edge clipper on every edge. `None` when tiny-skia
+/// refuses the path (not finite).
+fn difference_path(
+    reference: &Reference,
     start: Point,
     commands: &[PathCommand],
     dx: f64,
     dy: f64,
-    frame: Option<(f32, f32, i8)>,
     clipped: bool,
 ) -> Option<tiny_skia::Path> {
     let f = |p: Point| ((p.x - dx) as f32, (p.y - dy) as f32);
-    let mut pb = tiny_skia::PathBuilder::with_capacity(commands.len() + 2, commands.len() * 3 + 1);
+    let verbs = commands.len() + reference.vertices.len() + 6;
+    let mut pb = tiny_skia::PathBuilder::with_capacity(verbs, verbs * 3);
     let (x, y) = f(start);
     pb.move_to(x, y);
     let mut pen = start;
@@ -289,28 +285,18 @@ fn tiny_path(
         pen = c.end();
     }
     pb.close();
+    let (x, y) = f(reference.start);
+    pb.move_to(x, y);
+    for &p in reference.vertices.iter().rev() {
+        let (x, y) = f(p);
+        pb.line_to(x, y);
+    }
+    pb.close();
     if clipped {
-        // A flat sliver just outside the window: paints nothing, but the path's bounds no
-        // longer fit the mask, so tiny-skia runs its edge clipper on every edge.
         pb.move_to(-1.0, -1.0);
         pb.line_to(-0.5, -1.0);
         pb.close();
     }
-    let Some((w, h, orientation)) = frame else {
-        return pb.finish();
-    };
-    // Counter-clockwise on screen is (0,0) → (0,h) → (w,h) → (w,0).
-    pb.move_to(0.0, 0.0);
-    if orientation > 0 {
-        pb.line_to(w, 0.0);
-        pb.line_to(w, h);
-        pb.line_to(0.0, h);
-    } else {
-        pb.line_to(0.0, h);
-        pb.line_to(w, h);
-        pb.line_to(w, 0.0);
-    }
-    pb.close();
     pb.finish()
 }
 
@@ -341,42 +327,6 @@ pub(crate) fn finely_flattened(start: Point, commands: &[PathCommand]) -> Option
         }
     });
     Some(out)
-}
-
-/// The pixels that `path` and `reference` class differently (winding 0, exactly the
-/// orientation, or wrong: see [`Rendered`]), row by row (rows that agree are compared as
-/// byte slices).
-pub(crate) fn misplaced_pixels(reference: &Rendered, path: &Rendered) -> Vec<Pixel> {
-    let x0 = reference.x0.min(path.x0);
-    let y0 = reference.y0.min(path.y0);
-    let x1 = (reference.x0 + reference.width).max(path.x0 + path.width);
-    let y1 = (reference.y0 + reference.height).max(path.y0 + path.height);
-    fn row(r: &Rendered, y: i64) -> (i64, &[u8]) {
-        match &r.class {
-            Some(c) if y >= r.y0 && y < r.y0 + r.height => {
-                let w = r.width as usize;
-                let start = (y - r.y0) as usize * w;
-                (r.x0, &c[start..start + w])
-            }
-            _ => (r.x0, &[]),
-        }
-    }
-    let mut bad = Vec::new();
-    for y in y0..y1 {
-        let (ra, a) = row(reference, y);
-        let (rb, b) = row(path, y);
-        if ra == rb && a == b && !a.is_empty() {
-            continue;
-        }
-        for x in x0..x1 {
-            if reference.class(x, y) != path.class(x, y) {
-                if let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) {
-                    bad.push(Pixel::new(px, py));
-                }
-            }
-        }
-    }
-    bad
 }
 
 /// Indices of the contour points nearest to each of `pixels` (each index once, ascending).
@@ -419,9 +369,19 @@ pub(crate) fn points_near(points: &[Pixel], pixels: &[Pixel], radius: i32) -> Ve
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::collections::BTreeSet;
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
+    }
+
+    /// The pixels the path paints alone: misplaced against an empty reference.
+    fn painted(start: Point, cmds: &[PathCommand]) -> BTreeSet<(i32, i32)> {
+        let nothing = Reference::new(start, &[]);
+        misplaced_pixels(&nothing, start, cmds, EdgeClipping::Never)
+            .into_iter()
+            .map(|q| (q.x, q.y))
+            .collect()
     }
 
     /// Pixel centres strictly inside a polygon are painted, those outside are not (no centre
@@ -434,7 +394,7 @@ mod tests {
             PathCommand::Line(p(7.25, 5.0)),
             PathCommand::Line(p(3.0, 0.0)),
         ];
-        let r = Rendered::new(start, &cmds);
+        let got = painted(start, &cmds);
         for y in -3..9 {
             for x in -3..12 {
                 let c = p(f64::from(x) + 0.5, f64::from(y) + 0.5);
@@ -443,7 +403,7 @@ mod tests {
                     let t = c.y / 5.0;
                     c.x < 3.0 + 4.25 * t
                 };
-                assert_eq!(r.painted(Pixel { x, y }), inside, "({x}, {y})");
+                assert_eq!(got.contains(&(x, y)), inside, "({x}, {y})");
             }
         }
     }
@@ -457,20 +417,153 @@ mod tests {
                 PathCommand::Line(p(d + 5.0, d - 1.5)),
             ]
         };
-        let a = Rendered::new(p(0.0, 0.0), &cmds(0.0));
-        let b = Rendered::new(p(4000.0, 4000.0), &cmds(4000.0));
-        let mut painted = 0;
-        for y in -3..15 {
-            for x in -3..15 {
-                let q = Pixel { x, y };
-                let q2 = Pixel {
-                    x: x + 4000,
-                    y: y + 4000,
-                };
-                assert_eq!(a.painted(q), b.painted(q2), "({x}, {y})");
-                painted += usize::from(a.painted(q));
+        let a = painted(p(0.0, 0.0), &cmds(0.0));
+        let b: BTreeSet<(i32, i32)> = painted(p(4000.0, 4000.0), &cmds(4000.0))
+            .into_iter()
+            .map(|(x, y)| (x - 4000, y - 4000))
+            .collect();
+        assert_eq!(a, b);
+        assert!(a.len() > 30, "{}", a.len());
+    }
+
+    /// Winding of a path round each pixel centre of a window, classed the slow way: filled
+    /// alone (winding not 0) and with a rectangle round the window wound `−s` (winding not
+    /// `s`), as two separate tiny-skia fills. 0: winding 0, 1: winding `s`, 2: other.
+    fn classes(start: Point, cmds: &[PathCommand], s: f32, win: (i32, i32, u32, u32)) -> Vec<u8> {
+        let (x0, y0, w, h) = win;
+        let build = |frame: bool| {
+            let mut pb = tiny_skia::PathBuilder::new();
+            let f = |q: Point| ((q.x - f64::from(x0)) as f32, (q.y - f64::from(y0)) as f32);
+            let (x, y) = f(start);
+            pb.move_to(x, y);
+            for c in cmds {
+                match *c {
+                    PathCommand::Line(q) => {
+                        let (x, y) = f(q);
+                        pb.line_to(x, y);
+                    }
+                    PathCommand::Cubic(a, b, q) => {
+                        let ((ax, ay), (bx, by), (x, y)) = (f(a), f(b), f(q));
+                        pb.cubic_to(ax, ay, bx, by, x, y);
+                    }
+                    _ => unreachable!(),
+                }
             }
+            pb.close();
+            if frame {
+                let (w, h) = (w as f32, h as f32);
+                pb.move_to(0.0, 0.0);
+                if s > 0.0 {
+                    pb.line_to(w, 0.0);
+                    pb.line_to(w, h);
+                    pb.line_to(0.0, h);
+                } else {
+                    pb.line_to(0.0, h);
+                    pb.line_to(w, h);
+                    pb.line_to(w, 0.0);
+                }
+                pb.close();
+            }
+            let mut m = tiny_skia::Mask::new(w, h).unwrap();
+            let path = pb.finish().unwrap();
+            m.fill_path(
+                &path,
+                tiny_skia::FillRule::Winding,
+                false,
+                tiny_skia::Transform::identity(),
+            );
+            m.take()
+        };
+        let (alone, framed) = (build(false), build(true));
+        alone
+            .iter()
+            .zip(&framed)
+            .map(|(&a, &f)| match (a != 0, f != 0) {
+                (false, _) => 0,
+                (true, false) => 1,
+                (true, true) => 2,
+            })
+            .collect()
+    }
+
+    /// The one fill of path and reversed reference marks exactly the pixels where the two
+    /// fills per path class path and reference differently — for paths that are right, that
+    /// twist (a lobe wound the other way), that curl (wound twice), and that miss or add
+    /// pixels, with lines and cubics.
+    #[test]
+    fn one_fill_finds_what_two_fills_per_path_find() {
+        // Reference: a 10 × 8 pixel block at (2, 3), counter-clockwise on screen.
+        let rs = p(2.0, 3.0);
+        let rc = [
+            PathCommand::Line(p(2.0, 11.0)),
+            PathCommand::Line(p(12.0, 11.0)),
+            PathCommand::Line(p(12.0, 3.0)),
+        ];
+        let reference = Reference::new(rs, &rc);
+        let paths: Vec<(Point, Vec<PathCommand>)> = vec![
+            // Exactly the block, through other vertices.
+            (
+                p(2.1, 2.9),
+                vec![
+                    PathCommand::Line(p(1.9, 11.2)),
+                    PathCommand::Line(p(12.3, 10.9)),
+                    PathCommand::Line(p(11.8, 3.1)),
+                ],
+            ),
+            // Twisted: a figure of eight over the block.
+            (
+                p(2.0, 3.0),
+                vec![
+                    PathCommand::Line(p(2.0, 11.0)),
+                    PathCommand::Line(p(12.0, 3.0)),
+                    PathCommand::Line(p(12.0, 11.0)),
+                ],
+            ),
+            // Curled: round the block twice.
+            (
+                p(2.0, 3.0),
+                vec![
+                    PathCommand::Line(p(2.0, 11.0)),
+                    PathCommand::Line(p(12.0, 11.0)),
+                    PathCommand::Line(p(12.0, 3.0)),
+                    PathCommand::Line(p(2.0, 3.0)),
+                    PathCommand::Line(p(2.0, 11.0)),
+                    PathCommand::Line(p(12.0, 11.0)),
+                    PathCommand::Line(p(12.0, 3.0)),
+                ],
+            ),
+            // Wound the wrong way.
+            (p(2.0, 3.0), rc.iter().rev().copied().collect::<Vec<_>>()),
+            // A cubic bulging out on one side and a dent on another.
+            (
+                p(2.0, 3.0),
+                vec![
+                    PathCommand::Cubic(p(-1.0, 5.0), p(-1.0, 9.0), p(2.0, 11.0)),
+                    PathCommand::Line(p(12.0, 11.0)),
+                    PathCommand::Cubic(p(8.0, 8.0), p(8.0, 6.0), p(12.0, 3.0)),
+                ],
+            ),
+        ];
+        let win = (-4, -3, 24, 20);
+        let expected_ref = classes(rs, &rc, 1.0, win);
+        let mut differing_somewhere = 0;
+        for (k, (start, cmds)) in paths.iter().enumerate() {
+            let got: BTreeSet<(i32, i32)> =
+                misplaced_pixels(&reference, *start, cmds, EdgeClipping::Never)
+                    .into_iter()
+                    .map(|q| (q.x, q.y))
+                    .collect();
+            let cls = classes(*start, cmds, 1.0, win);
+            let mut want = BTreeSet::new();
+            for (i, (&a, &b)) in cls.iter().zip(&expected_ref).enumerate() {
+                if a != b {
+                    want.insert((win.0 + (i as i32) % 24, win.1 + (i as i32) / 24));
+                }
+            }
+            assert_eq!(got, want, "path {k}");
+            differing_somewhere += usize::from(!want.is_empty());
         }
-        assert!(painted > 30, "{painted}");
+        // Every path but the first is wrong somewhere.
+        assert_eq!(differing_somewhere, paths.len() - 1);
     }
 }

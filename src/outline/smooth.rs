@@ -20,7 +20,7 @@
 //! get more chords); the others go back to their two segments.
 
 use super::builder::Builder;
-use super::render_check::{finely_flattened, misplaced_pixels, Rendered};
+use super::render_check::{finely_flattened, misplaced_pixels, EdgeClipping, Reference};
 use crate::curve::PathCommand;
 use kurbo::{Point, Vec2};
 
@@ -80,8 +80,9 @@ pub(crate) fn smooth_polygon(
     start: Point,
     commands: &[PathCommand],
     smooth: &[bool],
-    reference: &Rendered,
+    reference: &Reference,
     grid: u8,
+    clipping: EdgeClipping,
 ) -> Vec<PathCommand> {
     let n = commands.len();
     let snap = Builder::new(grid);
@@ -144,12 +145,13 @@ pub(crate) fn smooth_polygon(
             break;
         }
         let out = assemble(&merges);
-        let rendered = Rendered::like(start, &out, reference);
-        let mut bad = misplaced_pixels(reference, &rendered);
+        let mut bad = misplaced_pixels(reference, start, &out, clipping);
         if let Some(fine) = finely_flattened(start, &out) {
             bad.extend(misplaced_pixels(
                 reference,
-                &Rendered::like(start, &fine, reference),
+                start,
+                &fine,
+                EdgeClipping::Never,
             ));
         }
         if bad.is_empty() {

@@ -57,8 +57,8 @@ fn check(mask: &Mask, model: Model, grid: u8) -> (usize, usize) {
             };
         }
         let reference = cracks_path(&c.points);
-        let reference = Rendered::new(reference.start, &reference.commands);
-        bad += misplaced_pixels(&reference, &Rendered::new(cp.start, &cp.commands)).len();
+        let reference = Reference::new(reference.start, &reference.commands);
+        bad += misplaced_pixels(&reference, cp.start, &cp.commands, EdgeClipping::Unknown).len();
     }
     (bad, off_grid)
 }
