@@ -85,6 +85,14 @@ impl Separation {
 
     /// Keeps the normals `n` with `n·d > 0`.
     fn constrain(&mut self, d: Dir) {
+        // Most pairs allow the whole arc already: an arc under a half-circle lies in the
+        // half-circle of `d` when both its ends do (its normals are positive combinations
+        // of `lo` and `hi`), and then nothing changes.
+        if let Normals::Arc { lo, hi } = self.normals {
+            if d != [0, 0] && dot(lo, d) >= 0 && dot(hi, d) >= 0 && cross(lo, hi) > 0 {
+                return;
+            }
+        }
         // The half-circle round d, from d turned by −90° to d turned by +90°.
         let (r1, r2) = ([d[1], -d[0]], [-d[1], d[0]]);
         self.normals = match self.normals {
