@@ -25,6 +25,8 @@
 //! [`Recognizer`]), then [`decomposition_json`], [`decomposition_picture`] and
 //! [`svg_document`], and [`fidelity`] to render the SVG back as resvg draws it and count
 //! differing pixels ([`staircases`] counts pixel staircases in its path data).
+//! Point sets given as such, in 2-D or 3-D, go to [`recognize_points`] (`layertrace
+//! recognize` on the command line).
 //!
 //! ```
 //! use layertrace::{decompose, fidelity, svg_document, trace, Convention, Mask, Model,

@@ -1,48 +1,8 @@
 //! Point files in, recognitions out: the JSON of `layertrace recognize`.
 //!
-//! A point file is one object:
-//!
-//! ```text
-//! {"inliers": [[x, y], …], "above": [[x, y], …], "below": [[x, y], …]}
-//! ```
-//!
-//! `"above"` and `"below"` may be empty, `null` or absent; every point has the same number
-//! of coordinates, each an integer written as such (`3`, not `3.0` or `3e0`) in the 64-bit
-//! range. Other members are refused (a misspelt `"abvoe"` would otherwise drop points
-//! silently). The file is read with serde's visitors, so a bad value is reported with its
-//! field and the parser's line and column: `inliers[3][1]: 2.5 is not an integer at line 4
-//! column 12`.
-//!
-//! The answer (`layertrace-recognition/1`):
-//!
-//! ```text
-//! {"format": "layertrace-recognition/1", "model": "quadric3", "dimension": 3,
-//!  "basis": ["x^2", …, "z", "1"], "inliers": 120, "above": 80, "below": 75,
-//!  "result": "described",
-//!  "layer": {"coefficients": [… , 0], "lower": L, "upper": U, "above": A, "below": B},
-//!  "local": {"origin": [x0, y0, z0], "coefficients": [… , 0], "lower": l, "upper": u,
-//!            "above": a, "below": b},
-//!  "stats": {"queries": 1, …}}
-//! ```
-//!
-//! `layer`: `f(p) = Σ coefficients[i] · basis_i(p)` in the points' own coordinates, every
-//! inlier has `lower ≤ f ≤ upper` (both reached), every point above `f ≥ above > upper`,
-//! every point below `f ≤ below < lower` (`above`, `below` are `null` without such points).
-//! `local`: the same layer as the recognizer found it, `f(p − origin)`, as in the
-//! decomposition JSON. All are exact integers, as large as they need to be (beyond 2^53 a
-//! reader that parses numbers as doubles, JavaScript's, rounds them; Python's does not).
-//!
-//! When not described, `"result": "not described"` and, instead of `layer` and `local`:
-//!
-//! ```text
-//!  "witness": {"origin": [x0, y0, z0], "terms": [{"weight": "3/7", "inlier": [x, y, z],
-//!              "outlier": [x, y, z], "side": "above"}, …]}
-//! ```
-//!
-//! The weights are exact fractions `p/q` (or integers), non-negative, summing to 1, and
-//! `Σ weight · d = 0` with `d = F(outlier − origin) − F(inlier − origin)` for a term whose
-//! outlier is above, `F(inlier − origin) − F(outlier − origin)` below, `F` the basis
-//! functions: no layer can have every `d` on its positive side.
+//! [`read_point_sets`] documents the point files, [`recognition_json`] the answers. Point
+//! files are read with serde's visitors (no derive), so that a bad value is reported with
+//! its field and the parser's line and column.
 
 use super::{PointSets, PointsAnswer, PointsRecognition};
 use crate::error::Error;
@@ -55,7 +15,20 @@ use std::path::{Path, PathBuf};
 /// The most coordinates a point may have in a file.
 const MAX_DIMENSION: usize = 16;
 
-/// Reads a point file (`-` for standard input); see the module docs for the format.
+/// Reads a point file (`-` for standard input).
+///
+/// A point file is one object:
+///
+/// ```text
+/// {"inliers": [[x, y], …], "above": [[x, y], …], "below": [[x, y], …]}
+/// ```
+///
+/// `"above"` and `"below"` may be empty, `null` or absent; every point has the same number
+/// of coordinates, each an integer written as such (`3`, not `3.0` or `3e0`) in the 64-bit
+/// range. Other members are refused (a misspelt `"abvoe"` would otherwise drop points
+/// silently). The file is read with serde's visitors, so a bad value is reported with its
+/// field and the parser's line and column: `inliers[3][1]: 2.5 is not an integer at line 4
+/// column 12`.
 ///
 /// Errors: [`Error::Read`] if it cannot be read, [`Error::NoData`] if it is empty,
 /// [`Error::PointFile`] if it is not a point file (the message says where).
@@ -82,7 +55,8 @@ pub fn read_point_sets(path: &Path) -> Result<PointSets, Error> {
     })
 }
 
-/// Parses the bytes of a point file (see the module docs); errors name the file `<memory>`.
+/// Parses the bytes of a point file (see [`read_point_sets`]); errors name the file
+/// `<memory>`.
 pub fn point_sets_from_json(bytes: &[u8]) -> Result<PointSets, Error> {
     parse(bytes).map_err(|message| Error::PointFile {
         path: "<memory>".into(),
@@ -336,7 +310,40 @@ fn or_null<T: fmt::Display>(v: Option<T>) -> String {
     v.map_or_else(|| "null".into(), |v| v.to_string())
 }
 
-/// The JSON text of a recognition (`layertrace-recognition/1`, see the module docs).
+/// The JSON text of a recognition.
+///
+/// The format, `layertrace-recognition/1`:
+///
+/// ```text
+/// {"format": "layertrace-recognition/1", "model": "quadric3", "dimension": 3,
+///  "basis": ["x^2", …, "z", "1"], "inliers": 120, "above": 80, "below": 75,
+///  "result": "described",
+///  "layer": {"coefficients": [… , 0], "lower": L, "upper": U, "above": A, "below": B},
+///  "local": {"origin": [x0, y0, z0], "coefficients": [… , 0], "lower": l, "upper": u,
+///            "above": a, "below": b},
+///  "stats": {"queries": 1, …}}
+/// ```
+///
+/// `layer`: `f(p) = Σ coefficients[i] · basis_i(p)` in the points' own coordinates, every
+/// inlier has `lower ≤ f ≤ upper` (both reached), every point above `f ≥ above > upper`,
+/// every point below `f ≤ below < lower` (`above`, `below` are `null` without such points).
+/// `local`: the same layer as the recognizer found it, `f(p − origin)`, as in the
+/// decomposition JSON. All are exact integers, as large as they need to be (beyond 2^53 a
+/// reader that parses numbers as doubles, JavaScript's, rounds them; Python's does not).
+/// With a basis of one's own ([`crate::recognize_points_with`]), `model` is `null`, and
+/// `layer` is absent when the basis has no absolute form (see [`super::PointsAnswer`]).
+///
+/// When not described, `"result": "not described"` and, instead of `layer` and `local`:
+///
+/// ```text
+///  "witness": {"origin": [x0, y0, z0], "terms": [{"weight": "3/7", "inlier": [x, y, z],
+///              "outlier": [x, y, z], "side": "above"}, …]}
+/// ```
+///
+/// The weights are exact fractions `p/q` (or integers), non-negative, summing to 1, and
+/// `Σ weight · d = 0` with `d = F(outlier − origin) − F(inlier − origin)` for a term whose
+/// outlier is above, `F(inlier − origin) − F(outlier − origin)` below, `F` the basis
+/// functions: no layer can have every `d` on its positive side.
 pub fn recognition_json(r: &PointsRecognition) -> String {
     let quote = |s: &str| serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into());
     let mut s = String::new();

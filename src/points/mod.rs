@@ -8,24 +8,6 @@
 //! hull, see [`crate::Recognizer`]). [`read_point_sets`] reads the JSON files of
 //! `layertrace recognize`; [`recognition_json`] writes its answer.
 //!
-//! ```
-//! use layertrace::{recognize_points, Model, PointSets, PointsAnswer};
-//!
-//! // The digital line 0 ≤ x − 2y ≤ 1, with a point above it and one below.
-//! let sets = PointSets::new((0..10).map(|x| vec![x, x / 2]).collect())
-//!     .with_above(vec![vec![3, 3]])
-//!     .with_below(vec![vec![6, 1]]);
-//! let r = recognize_points(&sets, Model::Line)?;
-//! let PointsAnswer::Described { layer: Some(layer), .. } = &r.answer else { panic!() };
-//! let basis = Model::Line.basis();
-//! for p in &sets.inliers {
-//!     let v = layer.value(&basis, p).unwrap();
-//!     assert!(layer.lower <= v && v <= layer.upper);
-//! }
-//! assert!(layer.value(&basis, &[3, 3]).unwrap() > layer.upper);
-//! # Ok::<(), layertrace::Error>(())
-//! ```
-//!
 //! Without outliers every set is described, by the zero function (`0 ≤ 0 ≤ 0`): the
 //! recognizer separates; it does not look for the thinnest layer holding a set.
 
@@ -128,8 +110,9 @@ pub enum PointsAnswer {
         /// that has no polynomials or whose span is not closed under translation.
         layer: Option<Layer>,
         /// The same layer as the recognizer found it, relative to a local origin (the
-        /// middle of the inliers' bounding box), with the smallest coefficients
-        /// [`small_certificate`] finds.
+        /// middle of the inliers' bounding box): `lower ≤ Σ a_i f_i(p − origin) ≤ upper`,
+        /// with coefficients made small as in the decomposition JSON (the largest-margin
+        /// direction rounded at growing scales, the first that verifies).
         local: Certificate,
     },
     /// No layer of the model separates the sets: the witness proves it.
@@ -163,6 +146,27 @@ impl PointsRecognition {
 
 /// Decides whether a layer of `model` holds `sets.inliers` with `sets.above` strictly above
 /// and `sets.below` strictly below; the proof returned has been checked exactly.
+///
+/// ```
+/// use layertrace::{recognize_points, Model, PointSets, PointsAnswer};
+///
+/// // The digital line 0 ≤ x − 2y ≤ 1, with a point above it and one below.
+/// let sets = PointSets::new((0..10).map(|x| vec![x, x / 2]).collect())
+///     .with_above(vec![vec![3, 3]])
+///     .with_below(vec![vec![6, 1]]);
+/// let r = recognize_points(&sets, Model::Line)?;
+/// let PointsAnswer::Described { layer: Some(layer), .. } = &r.answer else { panic!() };
+/// let basis = Model::Line.basis();
+/// for p in &sets.inliers {
+///     let v = layer.value(&basis, p).unwrap();
+///     assert!(layer.lower <= v && v <= layer.upper);
+/// }
+/// assert!(layer.value(&basis, &[3, 3]).unwrap() > layer.upper);
+/// # Ok::<(), layertrace::Error>(())
+/// ```
+///
+/// Without outliers every set is described, by the zero function (`0 ≤ 0 ≤ 0`): the
+/// recognizer separates; it does not look for the thinnest layer holding a set.
 ///
 /// Errors ([`Error::Points`], the message names the point): no inliers; a point whose
 /// number of coordinates is not the model's (2 for line, circle, conic and poly:D; 3 for
