@@ -160,6 +160,22 @@ pub enum Error {
         /// Why (one line).
         reason: String,
     },
+    /// A file of point sets (`layertrace recognize`) could not be read as one: not JSON, a
+    /// field missing or of the wrong type, a coordinate that is not a 64-bit integer, points
+    /// of different dimensions. The message names the field and, when the JSON parser knows
+    /// it, the line and column.
+    #[error("{path}: {message}")]
+    PointFile {
+        /// The file (`<stdin>` for standard input, `<memory>` for in-memory data).
+        path: PathBuf,
+        /// What is wrong, and where (one line).
+        message: String,
+    },
+    /// Point sets that cannot be recognized as given: no inliers, a model of another
+    /// dimension, a point whose lifting overflows 64-bit integers, or (never met in the
+    /// tests) a recognition that could decide neither way. The message names the point.
+    #[error("{0}")]
+    Points(String),
     /// No raster of this size can be made (zero or too large).
     #[error("cannot rasterize at {width}x{height} pixels")]
     Raster {

@@ -25,6 +25,8 @@
 //! [`Recognizer`]), then [`decomposition_json`], [`decomposition_picture`] and
 //! [`svg_document`], and [`fidelity`] to render the SVG back as resvg draws it and count
 //! differing pixels ([`staircases`] counts pixel staircases in its path data).
+//! Point sets given as such, in 2-D or 3-D, go to [`recognize_points`] (`layertrace
+//! recognize` on the command line).
 //!
 //! ```
 //! use layertrace::{decompose, fidelity, svg_document, trace, Convention, Mask, Model,
@@ -69,6 +71,7 @@ mod model;
 mod outline;
 mod output;
 mod pixel;
+mod points;
 mod recognize;
 mod vectorize;
 
@@ -106,12 +109,20 @@ pub use level::{
     border_polynomial, boundary_level, curve_kind, level_polynomial, piece_kind, polynomial_of,
 };
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
+/// The exact integers and fractions of [`Layer`] and [`Witness::exact_weights`].
+pub use num_bigint::BigInt;
+/// See [`BigInt`].
+pub use num_rational::BigRational;
 pub use outline::{
     contour_path, CommandCounts, ContourPath, FallbackCounts, JoinCounts, OutlineOptions,
     JUNCTION_MAX_DISTANCE, MAX_GRID,
 };
 pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
 pub use pixel::Pixel;
+pub use points::{
+    point_sets_from_json, read_point_sets, recognition_json, recognize_points,
+    recognize_points_with, Layer, PointSets, PointsAnswer, PointsRecognition,
+};
 pub use recognize::{
     max_margin_direction, recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness,
 };

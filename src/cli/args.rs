@@ -15,6 +15,10 @@ Examples:
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
   layertrace scans/ logo.png --out-dir svg/ --model circle
 
+Point sets (2-D or 3-D, from a JSON file): layertrace recognize --help
+  layertrace recognize points.json --model quadric3
+  (an image file named 'recognize' is given as ./recognize)
+
 Output files:
   The extension names the format (any case): -o writes .svg, .pdf (PDF 1.4) or .eps
   (EPSF-3.0), the page the image's size with one pixel = one point; --decomposition and
@@ -163,7 +167,7 @@ fn parse_model(s: &str) -> Result<Model, String> {
     const IMAGE_MODELS: &str = "line, circle, conic or poly:D (D = 1..=6)";
     match s.parse::<Model>() {
         Ok(Model::Quadric3 | Model::Poly3(_)) => Err(format!(
-            "'{s}' is a model of 3-D point sets; images take {IMAGE_MODELS}"
+            "'{s}' is a model of 3-D point sets (layertrace recognize); images take {IMAGE_MODELS}"
         )),
         Ok(m) => Ok(m),
         Err(_) => Err(format!("unknown model '{s}': expected {IMAGE_MODELS}")),

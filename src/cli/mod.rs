@@ -6,6 +6,7 @@
 mod args;
 mod batch;
 mod progress;
+mod recognize;
 mod run;
 
 use clap::Parser;
@@ -17,7 +18,14 @@ pub use args::Args;
 
 /// Parses `argv` (program name first) and runs the tool; the exit code is 0 on success, 1
 /// for bad input or output, 2 for bad arguments (see `--help`).
+///
+/// `layertrace recognize …` (the first argument exactly `recognize`) runs the recognition of
+/// point sets instead ([`recognize`]); an image named `recognize` is given as `./recognize`.
 pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
+    let argv: Vec<OsString> = argv.into_iter().collect();
+    if argv.get(1).is_some_and(|a| a == "recognize") {
+        return recognize_main(argv);
+    }
     let args = match Args::try_parse_from(argv) {
         Ok(args) => args,
         Err(e) => {
@@ -30,6 +38,28 @@ pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
     match run::run(&args) {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("layertrace: {e}");
+            ExitCode::from(exit_code(&e))
+        }
+    }
+}
+
+/// `layertrace recognize ARGS`: the program name and `recognize` make one name for clap.
+fn recognize_main(argv: Vec<OsString>) -> ExitCode {
+    let rest = argv.into_iter().skip(2);
+    let args = match recognize::RecognizeArgs::try_parse_from(
+        std::iter::once(OsString::from("layertrace recognize")).chain(rest),
+    ) {
+        Ok(args) => args,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    install_signal_handlers();
+    match recognize::run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("layertrace: {e}");
             ExitCode::from(exit_code(&e))

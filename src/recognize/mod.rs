@@ -146,6 +146,11 @@ impl Witness {
             .collect()
     }
 
+    /// The exact weights `λ_k`, in the order of [`Witness::pairs`].
+    pub fn exact_weights(&self) -> &[BigRational] {
+        &self.weights
+    }
+
     /// Re-checks the witness exactly: weights non-negative summing to one, and the weighted
     /// sum of the differences zero.
     pub fn verify(&self, basis: &dyn Basis) -> bool {

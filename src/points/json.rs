@@ -1,0 +1,502 @@
+//! Point files in, recognitions out: the JSON of `layertrace recognize`.
+//!
+//! [`read_point_sets`] documents the point files, [`recognition_json`] the answers. Point
+//! files are read with serde's visitors (no derive), so that a bad value is reported with
+//! its field and the parser's line and column.
+
+use super::{PointSets, PointsAnswer, PointsRecognition};
+use crate::error::Error;
+use crate::recognize::Side;
+use serde::de::{self, DeserializeSeed, MapAccess, SeqAccess, Visitor};
+use std::fmt::{self, Write as _};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+/// The most coordinates a point may have in a file.
+const MAX_DIMENSION: usize = 16;
+
+/// Reads a point file (`-` for standard input).
+///
+/// A point file is one object:
+///
+/// ```text
+/// {"inliers": [[x, y], …], "above": [[x, y], …], "below": [[x, y], …]}
+/// ```
+///
+/// `"above"` and `"below"` may be empty, `null` or absent; every point has the same number
+/// of coordinates, each an integer written as such (`3`, not `3.0` or `3e0`) in the 64-bit
+/// range. Other members are refused (a misspelt `"abvoe"` would otherwise drop points
+/// silently). The file is read with serde's visitors, so a bad value is reported with its
+/// field and the parser's line and column: `inliers[3][1]: 2.5 is not an integer at line 4
+/// column 12`.
+///
+/// Errors: [`Error::Read`] if it cannot be read, [`Error::NoData`] if it is empty,
+/// [`Error::PointFile`] if it is not a point file (the message says where).
+pub fn read_point_sets(path: &Path) -> Result<PointSets, Error> {
+    let stdin = path == Path::new("-");
+    let shown: PathBuf = if stdin { "<stdin>".into() } else { path.into() };
+    let read = |source| Error::Read {
+        path: shown.clone(),
+        source,
+    };
+    let bytes = if stdin {
+        let mut v = Vec::new();
+        std::io::stdin().lock().read_to_end(&mut v).map_err(read)?;
+        v
+    } else {
+        std::fs::read(path).map_err(read)?
+    };
+    if bytes.is_empty() {
+        return Err(Error::NoData { path: shown });
+    }
+    parse(&bytes).map_err(|message| Error::PointFile {
+        path: shown,
+        message,
+    })
+}
+
+/// Parses the bytes of a point file (see [`read_point_sets`]); errors name the file
+/// `<memory>`.
+pub fn point_sets_from_json(bytes: &[u8]) -> Result<PointSets, Error> {
+    parse(bytes).map_err(|message| Error::PointFile {
+        path: "<memory>".into(),
+        message,
+    })
+}
+
+/// The point sets of a file, or a one-line message naming the field and position.
+fn parse(bytes: &[u8]) -> Result<PointSets, String> {
+    let mut de = serde_json::Deserializer::from_slice(bytes);
+    let message = |e: serde_json::Error| match e.classify() {
+        serde_json::error::Category::Data => e.to_string(),
+        _ => format!("not valid JSON: {e}"),
+    };
+    let sets = de::Deserializer::deserialize_map(&mut de, FileVisitor).map_err(message)?;
+    de.end().map_err(message)?;
+    Ok(sets)
+}
+
+/// The names of the three sets, in file order.
+const SETS: [&str; 3] = ["inliers", "above", "below"];
+
+/// The top-level object.
+struct FileVisitor;
+
+impl<'de> Visitor<'de> for FileVisitor {
+    type Value = PointSets;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("an object with \"inliers\" (and \"above\", \"below\")")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<PointSets, A::Error> {
+        let mut first: Option<First> = None;
+        let mut sets: [Option<Vec<Vec<i64>>>; 3] = Default::default();
+        while let Some(key) = map.next_key::<String>()? {
+            let Some(k) = SETS.iter().position(|s| *s == key) else {
+                return Err(de::Error::custom(format!(
+                    "unknown member \"{key}\" (a point file has \"inliers\", \"above\" and \"below\")"
+                )));
+            };
+            if sets[k].is_some() {
+                return Err(de::Error::custom(format!("\"{key}\" is given twice")));
+            }
+            sets[k] = Some(map.next_value_seed(ListSeed {
+                name: SETS[k],
+                first: &mut first,
+            })?);
+        }
+        let [inliers, above, below] = sets;
+        Ok(PointSets {
+            inliers: inliers.ok_or_else(|| de::Error::custom("missing \"inliers\""))?,
+            above: above.unwrap_or_default(),
+            below: below.unwrap_or_default(),
+        })
+    }
+}
+
+/// The first point read: its set, index and number of coordinates.
+#[derive(Clone, Copy)]
+struct First {
+    name: &'static str,
+    index: usize,
+    dimension: usize,
+}
+
+/// A list of points (`null` is an empty list, except for the inliers).
+struct ListSeed<'a> {
+    name: &'static str,
+    first: &'a mut Option<First>,
+}
+
+impl<'de> DeserializeSeed<'de> for ListSeed<'_> {
+    type Value = Vec<Vec<i64>>;
+
+    fn deserialize<D: de::Deserializer<'de>>(self, d: D) -> Result<Self::Value, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for ListSeed<'_> {
+    type Value = Vec<Vec<i64>>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "\"{}\" to be a list of points [[x, y], …]", self.name)
+    }
+
+    fn visit_unit<E: de::Error>(self) -> Result<Self::Value, E> {
+        if self.name == SETS[0] {
+            return Err(E::invalid_type(de::Unexpected::Unit, &self));
+        }
+        Ok(Vec::new())
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut points = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(1 << 16));
+        loop {
+            let index = points.len();
+            let seed = PointSeed {
+                name: self.name,
+                index,
+            };
+            let Some(p) = seq.next_element_seed(seed)? else {
+                break;
+            };
+            match *self.first {
+                None => {
+                    *self.first = Some(First {
+                        name: self.name,
+                        index,
+                        dimension: p.len(),
+                    })
+                }
+                Some(f) if f.dimension != p.len() => {
+                    return Err(de::Error::custom(format!(
+                        "{}[{index}] has {} coordinates, but {}[{}] has {}: every point must have the same dimension",
+                        self.name,
+                        p.len(),
+                        f.name,
+                        f.index,
+                        f.dimension
+                    )))
+                }
+                Some(_) => {}
+            }
+            points.push(p);
+        }
+        Ok(points)
+    }
+}
+
+/// One point: a list of 1 to [`MAX_DIMENSION`] integers.
+struct PointSeed {
+    name: &'static str,
+    index: usize,
+}
+
+impl<'de> DeserializeSeed<'de> for PointSeed {
+    type Value = Vec<i64>;
+
+    fn deserialize<D: de::Deserializer<'de>>(self, d: D) -> Result<Self::Value, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for PointSeed {
+    type Value = Vec<i64>;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}[{}] to be a point, a list of integer coordinates [x, y] or [x, y, z]",
+            self.name, self.index
+        )
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+        let mut p = Vec::with_capacity(3);
+        loop {
+            let seed = CoordinateSeed {
+                name: self.name,
+                index: self.index,
+                k: p.len(),
+            };
+            let Some(v) = seq.next_element_seed(seed)? else {
+                break;
+            };
+            if p.len() == MAX_DIMENSION {
+                return Err(de::Error::custom(format!(
+                    "{}[{}] has more than {MAX_DIMENSION} coordinates",
+                    self.name, self.index
+                )));
+            }
+            p.push(v);
+        }
+        if p.is_empty() {
+            return Err(de::Error::custom(format!(
+                "{}[{}] is an empty point",
+                self.name, self.index
+            )));
+        }
+        Ok(p)
+    }
+}
+
+/// One coordinate: an integer written as such, within `i64`.
+struct CoordinateSeed {
+    name: &'static str,
+    index: usize,
+    k: usize,
+}
+
+impl CoordinateSeed {
+    fn at(&self) -> String {
+        format!("{}[{}][{}]", self.name, self.index, self.k)
+    }
+}
+
+impl<'de> DeserializeSeed<'de> for CoordinateSeed {
+    type Value = i64;
+
+    fn deserialize<D: de::Deserializer<'de>>(self, d: D) -> Result<i64, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for CoordinateSeed {
+    type Value = i64;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} to be an integer", self.at())
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<i64, E> {
+        Ok(v)
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<i64, E> {
+        i64::try_from(v).map_err(|_| E::custom(too_large(&self.at())))
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<i64, E> {
+        // serde_json gives integers beyond u64 and i64 as doubles too.
+        Err(E::custom(if v.is_finite() && v.fract() == 0.0 {
+            if v.abs() >= 9.2e18 {
+                too_large(&self.at())
+            } else {
+                format!(
+                    "{}: {v:?} must be written as an integer (no decimal point or exponent)",
+                    self.at()
+                )
+            }
+        } else {
+            format!("{}: {v} is not an integer", self.at())
+        }))
+    }
+}
+
+fn too_large(at: &str) -> String {
+    format!("{at} is beyond the 64-bit integer range (-2^63 to 2^63 - 1)")
+}
+
+/// `[1,-2,3]`.
+fn list<T: fmt::Display>(values: impl IntoIterator<Item = T>) -> String {
+    let items: Vec<String> = values.into_iter().map(|v| v.to_string()).collect();
+    format!("[{}]", items.join(","))
+}
+
+/// A number or `null`.
+fn or_null<T: fmt::Display>(v: Option<T>) -> String {
+    v.map_or_else(|| "null".into(), |v| v.to_string())
+}
+
+/// The JSON text of a recognition.
+///
+/// The format, `layertrace-recognition/1`:
+///
+/// ```text
+/// {"format": "layertrace-recognition/1", "model": "quadric3", "dimension": 3,
+///  "basis": ["x^2", …, "z", "1"], "inliers": 120, "above": 80, "below": 75,
+///  "result": "described",
+///  "layer": {"coefficients": [… , 0], "lower": L, "upper": U, "above": A, "below": B},
+///  "local": {"origin": [x0, y0, z0], "coefficients": [… , 0], "lower": l, "upper": u,
+///            "above": a, "below": b},
+///  "stats": {"queries": 1, …}}
+/// ```
+///
+/// `layer`: `f(p) = Σ coefficients[i] · basis_i(p)` in the points' own coordinates, every
+/// inlier has `lower ≤ f ≤ upper` (both reached), every point above `f ≥ above > upper`,
+/// every point below `f ≤ below < lower` (`above`, `below` are `null` without such points).
+/// `local`: the same layer as the recognizer found it, `f(p − origin)`, as in the
+/// decomposition JSON. All are exact integers, as large as they need to be (beyond 2^53 a
+/// reader that parses numbers as doubles, JavaScript's, rounds them; Python's does not).
+/// With a basis of one's own ([`crate::recognize_points_with`]), `model` is `null`, and
+/// `layer` is absent when the basis has no absolute form (see [`super::PointsAnswer`]).
+///
+/// When not described, `"result": "not described"` and, instead of `layer` and `local`:
+///
+/// ```text
+///  "witness": {"origin": [x0, y0, z0], "terms": [{"weight": "3/7", "inlier": [x, y, z],
+///              "outlier": [x, y, z], "side": "above"}, …]}
+/// ```
+///
+/// The weights are exact fractions `p/q` (or integers), non-negative, summing to 1, and
+/// `Σ weight · d = 0` with `d = F(outlier − origin) − F(inlier − origin)` for a term whose
+/// outlier is above, `F(inlier − origin) − F(outlier − origin)` below, `F` the basis
+/// functions: no layer can have every `d` on its positive side.
+pub fn recognition_json(r: &PointsRecognition) -> String {
+    let quote = |s: &str| serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into());
+    let mut s = String::new();
+    let model = r.model.map_or_else(|| "null".into(), |m| quote(&m.name()));
+    let names: Vec<String> = r.basis.iter().map(|n| quote(n)).collect();
+    // Writing to a String cannot fail.
+    let _ = write!(
+        s,
+        "{{\"format\": \"layertrace-recognition/1\", \"model\": {model}, \"dimension\": {},\n \"basis\": [{}],\n \"inliers\": {}, \"above\": {}, \"below\": {},\n",
+        r.dimension,
+        names.join(","),
+        r.counts[0],
+        r.counts[1],
+        r.counts[2]
+    );
+    match &r.answer {
+        PointsAnswer::Described { layer, local } => {
+            s.push_str(" \"result\": \"described\",\n");
+            if let Some(l) = layer {
+                let zero = num_bigint::BigInt::default();
+                let _ = writeln!(
+                    s,
+                    " \"layer\": {{\"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": {}, \"below\": {}}},",
+                    list(l.coefficients.iter().chain([&zero])),
+                    l.lower,
+                    l.upper,
+                    or_null(l.above.as_ref()),
+                    or_null(l.below.as_ref())
+                );
+            }
+            let _ = writeln!(
+                s,
+                " \"local\": {{\"origin\": {}, \"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": {}, \"below\": {}}},",
+                list(&local.origin),
+                list(local.coefficients.iter().chain(std::iter::once(&0))),
+                local.lower,
+                local.upper,
+                or_null(local.above),
+                or_null(local.below)
+            );
+        }
+        PointsAnswer::NotDescribed(w) => {
+            s.push_str(" \"result\": \"not described\",\n");
+            let _ = write!(
+                s,
+                " \"witness\": {{\"origin\": {}, \"terms\": [",
+                list(&w.origin)
+            );
+            for (k, ((inlier, outlier, side), weight)) in
+                w.pairs.iter().zip(w.exact_weights()).enumerate()
+            {
+                let side = match side {
+                    Side::Upper => "above",
+                    Side::Lower => "below",
+                };
+                let _ = write!(
+                    s,
+                    "{}\n   {{\"weight\": \"{weight}\", \"inlier\": {}, \"outlier\": {}, \"side\": \"{side}\"}}",
+                    if k > 0 { "," } else { "" },
+                    list(inlier),
+                    list(outlier)
+                );
+            }
+            s.push_str("]},\n");
+        }
+    }
+    let t = &r.stats;
+    let _ = writeln!(
+        s,
+        " \"stats\": {{\"queries\": {}, \"certificate_reused\": {}, \"float_runs\": {}, \"float_iterations\": {}, \"whitened\": {}, \"exact_fallbacks\": {}, \"undecided\": {}, \"over_budget\": {}, \"work\": {}}}}}",
+        t.queries,
+        t.certificate_reused,
+        t.float_runs,
+        t.float_iterations,
+        t.whitened,
+        t.exact_fallbacks,
+        t.undecided,
+        t.over_budget,
+        t.work
+    );
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn error(text: &str) -> String {
+        parse(text.as_bytes()).unwrap_err()
+    }
+
+    #[test]
+    fn reads_the_three_sets() {
+        let s =
+            parse(br#"{"inliers": [[1, 2], [-3, 4]], "below": [[0, 0]], "above": null}"#).unwrap();
+        assert_eq!(s.inliers, [vec![1, 2], vec![-3, 4]]);
+        assert!(s.above.is_empty());
+        assert_eq!(s.below, [vec![0, 0]]);
+        let s = parse(b"{\"inliers\": [[9223372036854775807, -9223372036854775808, 0]]}").unwrap();
+        assert_eq!(s.inliers, [vec![i64::MAX, i64::MIN, 0]]);
+        assert_eq!(s.dimension(), Some(3));
+    }
+
+    /// Every message names the field and the position.
+    #[test]
+    fn errors_name_the_field_and_line() {
+        let cases: &[(&str, &[&str])] = &[
+            (
+                "{\"inliers\": [[1,2],\n [3, 2.5]]}",
+                &["inliers[1][1]", "not an integer", "line 2"],
+            ),
+            (
+                "{\"inliers\": [[1,2]],\n \"above\": [[1,2,3]]}",
+                &["above[0] has 3", "inliers[0] has 2", "line 2"],
+            ),
+            (
+                "{\"inliers\": [[1, 9223372036854775808]]}",
+                &["inliers[0][1]", "64-bit", "line 1"],
+            ),
+            ("{\"inliers\": [[1, 1e30]]}", &["inliers[0][1]", "64-bit"]),
+            (
+                "{\"inliers\": [[1, 100000000000000000000000000]]}",
+                &["inliers[0][1]", "64-bit"],
+            ),
+            (
+                "{\"inliers\": [[1, 2.0]]}",
+                &["inliers[0][1]", "written as an integer"],
+            ),
+            (
+                "{\"inliers\": [[1, \"2\"]]}",
+                &["inliers[0][1] to be an integer", "line 1"],
+            ),
+            ("{\"inliers\": [[]]}", &["inliers[0] is an empty point"]),
+            ("{\"inliers\": [1, 2]}", &["inliers[0] to be a point"]),
+            ("{\"inliers\": {}}", &["\"inliers\" to be a list"]),
+            ("{\"inliers\": null}", &["\"inliers\" to be a list"]),
+            ("{\"above\": [[1, 2]]}", &["missing \"inliers\""]),
+            (
+                "{\"inliers\": [], \"abvoe\": []}",
+                &["unknown member \"abvoe\""],
+            ),
+            ("{\"inliers\": [], \"inliers\": []}", &["given twice"]),
+            ("[[1, 2]]", &["expected an object"]),
+            ("{\"inliers\": [[1, 2]]", &["not valid JSON", "line 1"]),
+            ("{\"inliers\": [[1, 2]]} x", &["not valid JSON", "trailing"]),
+            ("\u{1}", &["not valid JSON"]),
+        ];
+        for (text, parts) in cases {
+            let e = error(text);
+            assert!(!e.contains('\n'), "{e}");
+            for part in *parts {
+                assert!(e.contains(part), "{text:?}: {e:?} lacks {part:?}");
+            }
+        }
+    }
+}
