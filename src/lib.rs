@@ -114,8 +114,8 @@ pub use num_bigint::BigInt;
 /// See [`BigInt`].
 pub use num_rational::BigRational;
 pub use outline::{
-    contour_path, CommandCounts, ContourPath, FallbackCounts, JoinCounts, OutlineOptions,
-    JUNCTION_MAX_DISTANCE, MAX_GRID,
+    contour_path, CommandCounts, ContourPath, EdgeClipping, FallbackCounts, JoinCounts,
+    OutlineOptions, JUNCTION_MAX_DISTANCE, MAX_GRID,
 };
 pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
 pub use pixel::Pixel;
