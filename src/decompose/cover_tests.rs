@@ -199,8 +199,9 @@ fn small_mask() -> impl Strategy<Value = Mask> {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(150))]
-    /// The sliding window's reach of every start is the reach of a growth started afresh
-    /// there, and its greedy pieces are the greedy's.
+    /// The sweep's bounds hold the reach of a growth started afresh at every start, exactly
+    /// where it says so and everywhere once every start is settled; its greedy pieces are
+    /// the greedy's.
     #[test]
     fn reach_is_fresh_growth(mask in small_mask(), ipol in any::<bool>()) {
         let (convention, rule) = if ipol {
@@ -214,14 +215,31 @@ proptest! {
                 let basis: Arc<dyn Basis> = Arc::new(model.basis());
                 let mut rec = Recognizer::new(basis.clone(), &[0, 0]).unwrap();
                 let budget = WorkBudget::default();
-                let r = super::reach::reaches(pts, closed, &mut rec, rule, budget);
+                let mut r = super::reach::Reach::new(pts, closed, &mut rec, rule, budget);
                 prop_assert_eq!(&r.greedy, &decompose_points(pts, &mut rec, rule));
                 let mut w = window::Window::new(pts, rule);
+                let fresh: Vec<usize> = (0..n)
+                    .map(|i| {
+                        let mut cert = w.begin(&mut rec, i);
+                        let cap = if closed { i + n - 1 } else { n - 1 };
+                        w.grow(&mut rec, cap, budget, &mut cert);
+                        w.last
+                    })
+                    .collect();
+                let (low, up) = (r.lower(), r.upper());
                 for i in 0..n {
-                    let mut cert = w.begin(&mut rec, i);
-                    w.grow(&mut rec, if closed { i + n - 1 } else { n - 1 }, budget, &mut cert);
-                    prop_assert_eq!(r.last[i], w.last, "start {} of {} {:?}", i, model, pts);
+                    prop_assert!(low[i] <= fresh[i] && fresh[i] <= up[i],
+                        "start {} of {}: {} <= {} <= {} {:?}", i, model, low[i], fresh[i], up[i], pts);
+                    if r.is_exact(i) {
+                        prop_assert_eq!(low[i], up[i]);
+                    }
                 }
+                for i in 0..n {
+                    let low = r.lower();
+                    r.settle(i, low[i], &mut rec);
+                }
+                prop_assert_eq!(r.lower(), fresh.clone(), "{} {:?}", model, pts);
+                prop_assert_eq!(r.upper(), fresh, "{} {:?}", model, pts);
             }
         }
     }

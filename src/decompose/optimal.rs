@@ -18,6 +18,16 @@
 //! such start on ties. A contour that does not close (open chains, and the IPOL convention's
 //! closed chains, which repeat their first point at the end) is covered from index 0 alone.
 //!
+//! # Settling only the reaches that matter
+//! The sweep leaves most reaches bounded, not exact (see [`reach`](super::reach)). The
+//! search runs on the upper bounds: a cover found there with pieces within the lower bounds
+//! is a real cover, and no real cover has fewer pieces, so it is optimal. Otherwise the
+//! starts of the pieces that went beyond their lower bounds are settled (made exact), with
+//! the middles of the unsettled runs beside them (reaches grow along a run, so the next try
+//! is bisected rather than walked), and the search runs again; after
+//! [`MAX_ROUNDS`] rounds every start is settled. When not even the upper bounds allow fewer
+//! pieces than the greedy's, the greedy's pieces are kept without settling anything.
+//!
 //! Minimality holds among covers by grown pieces, and the greedy's cover is one of them
 //! (its starts are grown exactly as the greedy grows them), so the optimal cover never has
 //! more pieces. When it has as many, the greedy's pieces are kept as they are. Otherwise the
@@ -26,7 +36,7 @@
 //! if the one-shot query fails within the budget; should that fail too, the contour keeps
 //! the greedy's pieces).
 
-use super::reach::reaches;
+use super::reach::Reach;
 use super::window::{Stop, Window};
 use super::{piece_outliers, xy, OutlierRule, Piece, WorkBudget};
 use crate::pixel::Pixel;
@@ -49,16 +59,63 @@ pub fn optimal_points(
     if n <= 2 {
         return (0, super::decompose_points_within(points, rec, rule, budget));
     }
-    let reach = reaches(points, closed, rec, rule, budget);
-    let ends: Vec<usize> = reach.last.iter().map(|&l| l + 1).collect();
+    let mut reach = Reach::new(points, closed, rec, rule, budget);
     let bound = reach.greedy.len();
-    let found = if closed {
-        fewest_round(&ends, bound)
-    } else {
-        Some((0, fewest_from_start(&ends)))
-    };
-    let Some((s, cuts)) = found.filter(|(_, c)| c.len() < bound) else {
-        return (0, reach.greedy);
+    let mut rounds = 0;
+    let (s, cuts, upper) = loop {
+        let upper = reach.upper();
+        let ends: Vec<usize> = upper.iter().map(|&l| l + 1).collect();
+        let found = if closed {
+            fewest_round(&ends, bound)
+        } else {
+            Some((0, fewest_from_start(&ends))).filter(|(_, c)| c.len() < bound)
+        };
+        // Not even the upper bounds allow fewer pieces than the greedy's.
+        let Some((s, cuts)) = found else {
+            return (0, reach.greedy);
+        };
+        // The pieces of that cover beyond the lower bound of their start: settle those
+        // starts (all of them after many rounds) and try again.
+        let low = reach.lower();
+        let starts: Vec<usize> = if rounds >= MAX_ROUNDS {
+            (0..n).filter(|&i| !reach.is_exact(i)).collect()
+        } else {
+            cuts.iter()
+                .enumerate()
+                .filter(|&(k, &c)| {
+                    let end = cuts.get(k + 1).copied().unwrap_or(s + n);
+                    end - 1 > low[c % n] + (c - c % n)
+                })
+                .map(|(_, &c)| c % n)
+                .collect()
+        };
+        let settled = !starts.is_empty();
+        for c in starts {
+            // Also the middles of the unsettled runs beside it: reaches grow along a run
+            // between hazards, so the cover's next try is bisected instead of walked.
+            let run = |step: &dyn Fn(usize) -> usize| {
+                let mut k = c;
+                let mut len = 0;
+                while len < n && !reach.is_exact(step(k)) {
+                    k = step(k);
+                    len += 1;
+                }
+                len
+            };
+            let before = run(&|k| (k + n - 1) % n);
+            let after = run(&|k| (k + 1) % n);
+            for i in [
+                c,
+                (c + n - before.div_ceil(2)) % n,
+                (c + after.div_ceil(2)) % n,
+            ] {
+                reach.settle(i, low[i], rec);
+            }
+        }
+        if !settled {
+            break (s, cuts, upper);
+        }
+        rounds += 1;
     };
     let rotated: Vec<Pixel> = points[s..].iter().chain(&points[..s]).copied().collect();
     let mut pieces = Vec::with_capacity(cuts.len());
@@ -66,7 +123,7 @@ pub fn optimal_points(
         let end = cuts.get(k + 1).copied().unwrap_or(s + n);
         let (first, last) = (c - s, end - 1 - s);
         let full = c % n;
-        let maximal = last + s == reach.last[full] + (c - full);
+        let maximal = reach.is_exact(full) && end - 1 == upper[full] + (c - full);
         let Some(certificate) = certify(&rotated, first, last, rec, rule, budget) else {
             return (0, reach.greedy);
         };
@@ -74,11 +131,14 @@ pub fn optimal_points(
             first,
             last,
             certificate,
-            cut: if maximal { reach.cut[full] } else { None },
+            cut: if maximal { reach.cut(full) } else { None },
         });
     }
     (s, pieces)
 }
+
+/// Rounds of settling the starts a candidate cover needs before all are settled.
+const MAX_ROUNDS: usize = 40;
 
 /// The cuts from 0 of the fewest pieces covering `0..n` (`ends[c]`: exclusive end of the
 /// longest piece from `c`, at most `n`), by layers of the jump game.

@@ -278,30 +278,4 @@ impl<'a> Window<'a> {
         }
         Stop::End
     }
-
-    /// True when some prefix `first + 1 ..= j` (`j ≤ last`) of the window without its first
-    /// point has that point as an outlier: a 4-neighbour on one side of an interior point
-    /// `k` (`first + 1 < k < j`) that is not among `first + 1 ..= k`. Without such a
-    /// prefix, every prefix of the shifted window has a subset of the constraints of the
-    /// same prefix of this window. Never with [`OutlierRule::Any`].
-    pub(crate) fn shift_adds_outlier(&self) -> bool {
-        if self.rule == OutlierRule::Any {
-            return false;
-        }
-        let p = self.at(self.first);
-        for k in self.first + 2..self.last {
-            let q = self.at(k);
-            if q == p {
-                return false;
-            }
-            if (q.x - p.x).abs() + (q.y - p.y).abs() == 1 {
-                if let Some(sides) = neighbour_sides(self.at(k - 1), q, self.at(k + 1)) {
-                    if sides.iter().any(|&(r, a, b)| r == p && (a || b)) {
-                        return true;
-                    }
-                }
-            }
-        }
-        false
-    }
 }
