@@ -63,7 +63,7 @@ pub struct Piece {
     /// The exact layer: origin `p_first`, RIGHT outliers above, LEFT outliers below.
     pub certificate: Certificate,
     /// Why the piece ended before a point that might have extended it (`None`: it is
-    /// maximal, or it ends the contour).
+    /// maximal, or it ends the contour, or — in an optimal cover — the cover cuts there).
     pub cut: Option<Cut>,
 }
 
