@@ -89,8 +89,9 @@ pub use curve::{
     ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
 };
 pub use decompose::{
-    decompose, decompose_points, decompose_points_within, decompose_within, neighbour_sides,
-    piece_outliers, Cut, Decomposition, OutlierRule, Piece, WorkBudget,
+    decompose, decompose_cover, decompose_points, decompose_points_within, decompose_within,
+    neighbour_sides, optimal_points, piece_outliers, Cover, Cut, Decomposition, OutlierRule, Piece,
+    WorkBudget,
 };
 pub use error::Error;
 pub use estimate::{

@@ -1,7 +1,7 @@
 //! The command line: every option, checked when it is parsed.
 
 use clap::Parser;
-use layertrace::{Format, Model, Threshold};
+use layertrace::{Cover, Format, Model, Threshold};
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
@@ -114,6 +114,12 @@ pub struct Args {
     /// Family of curves: line, circle, conic, or poly:D (polynomials of degree D = 1..6).
     #[arg(long, short, default_value = "conic", value_parser = parse_model)]
     pub model: Model,
+
+    /// How each border is cut into pieces: 'greedy' (the paper's: each piece grown as far
+    /// as it goes, from the border's first pixel) or 'optimal' (the fewest such pieces, cut
+    /// anywhere round the border; never more pieces than greedy, and slower).
+    #[arg(long, value_name = "greedy|optimal", default_value = "greedy")]
+    pub cover: Cover,
 
     /// Foreground is luma < N (0..=255), 'otsu' for Otsu's threshold, or 'adaptive' for a
     /// local threshold that ignores lighting gradients and shadows (scans, photographs of

@@ -99,6 +99,7 @@ pub fn run(args: &Args) -> Result<bool, Error> {
 pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPool>>) -> Options {
     let mut o = Options::default()
         .model(args.model)
+        .cover(args.cover)
         .invert(args.invert)
         .turdsize(args.turdsize)
         .max_pixels(args.max_pixels)

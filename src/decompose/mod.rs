@@ -1,4 +1,5 @@
-//! Greedy decomposition of contours into pieces described by Digital Level Layers.
+//! Decomposition of contours into pieces described by Digital Level Layers: the paper's
+//! greedy, or the optimal cover ([`Cover`]).
 //!
 //! # Outliers of a piece (paper section 1.3, Figure 7)
 //! For a piece `p_i … p_j` of a contour and each interior index `k` in `i+1 … j−1`, every
@@ -21,6 +22,14 @@
 //! always accepted. A prefix of a described piece need not be described: the greedy stops at
 //! the first failure all the same. Growth uses the incremental [`Recognizer`].
 //!
+//! # Optimal cover
+//! [`Cover::Optimal`] covers each contour with the fewest pieces that the greedy's growth
+//! could give (every prefix described), the first cut anywhere on a closed contour: the
+//! reach of every start is found by sliding a window along the contour (`reach` module),
+//! then a shortest path round the cycle (`optimal` module). It never has more pieces than
+//! the greedy; a closed contour whose optimal cover does not start at its first point is
+//! rotated in the [`Decomposition`] to start there.
+//!
 //! # Work budget
 //! A piece may take at most [`WorkBudget::limit`] of its length in recognizer work units
 //! (counted, not timed: see [`WorkBudget`]). A query that would exceed it ends the piece at
@@ -30,14 +39,19 @@
 
 use crate::contour::Contour;
 use crate::model::{Basis, Model};
-use crate::pixel::{Pixel, PixelMap, PixelSet};
-use crate::recognize::{Certificate, Outcome, Recognizer, Side, Stats};
+use crate::pixel::{Pixel, PixelSet};
+use crate::recognize::{Certificate, Recognizer, Stats};
 use rayon::prelude::*;
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
 mod budget;
+mod optimal;
+mod reach;
+mod window;
 pub use budget::{Cut, WorkBudget};
+pub use optimal::optimal_points;
+use window::Window;
 
 /// One piece of a contour: indices `first..=last` of its points and the layer describing it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -49,7 +63,7 @@ pub struct Piece {
     /// The exact layer: origin `p_first`, RIGHT outliers above, LEFT outliers below.
     pub certificate: Certificate,
     /// Why the piece ended before a point that might have extended it (`None`: it is
-    /// maximal, or it ends the contour).
+    /// maximal, or it ends the contour, or — in an optimal cover — the cover cuts there).
     pub cut: Option<Cut>,
 }
 
@@ -75,6 +89,48 @@ pub enum OutlierRule {
     Any,
 }
 
+/// Which cover of each contour by pieces the decomposition computes.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Cover {
+    /// The paper's greedy: from the contour's first point, each piece grown while it is
+    /// described, the next one started at the point that failed.
+    #[default]
+    Greedy,
+    /// The fewest pieces the greedy's growth could give, cut anywhere round a closed
+    /// contour ([`optimal_points`]); never more pieces than [`Cover::Greedy`].
+    Optimal,
+}
+
+impl Cover {
+    /// `"greedy"` or `"optimal"`, as on the command line and in the JSON output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Cover::Greedy => "greedy",
+            Cover::Optimal => "optimal",
+        }
+    }
+}
+
+impl std::fmt::Display for Cover {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Cover {
+    type Err = String;
+
+    /// `greedy` or `optimal`.
+    fn from_str(s: &str) -> Result<Cover, String> {
+        match s {
+            "greedy" => Ok(Cover::Greedy),
+            "optimal" => Ok(Cover::Optimal),
+            _ => Err(format!("unknown cover {s:?} (expected greedy or optimal)")),
+        }
+    }
+}
+
 /// The decomposition of every contour of an image.
 #[derive(Clone, Debug)]
 pub struct Decomposition {
@@ -86,6 +142,8 @@ pub struct Decomposition {
     pub pieces: Vec<Vec<Piece>>,
     /// The outlier rule the pieces were recognized with.
     pub rule: OutlierRule,
+    /// The cover the pieces form.
+    pub cover: Cover,
     /// Work done by the recognizers.
     pub stats: Stats,
 }
@@ -160,14 +218,6 @@ pub fn piece_outliers(
     (right, left)
 }
 
-/// Per-piece bookkeeping of the greedy: multiplicities of piece pixels and of outliers.
-#[derive(Default)]
-struct Growth {
-    in_piece: PixelMap<u32>,
-    /// Outlier → (times RIGHT, times LEFT).
-    outliers: PixelMap<(u32, u32)>,
-}
-
 fn xy(p: Pixel) -> [i64; 2] {
     [p.x as i64, p.y as i64]
 }
@@ -187,88 +237,18 @@ pub fn decompose_points_within(
 ) -> Vec<Piece> {
     let n = points.len();
     let mut pieces = Vec::new();
-    let mut g = Growth::default();
+    let mut w = Window::new(points, rule);
     let mut i = 0;
     while i < n {
-        rec.reset(&xy(points[i]));
-        g.in_piece.clear();
-        g.outliers.clear();
-        rec.add_inlier(&xy(points[i]));
-        *g.in_piece.entry(points[i]).or_default() += 1;
-        // One point, no outlier: described by the zero function.
-        let mut certificate = match rec.recognize() {
-            Outcome::Described => rec.certificate(),
-            _ => None,
-        }
-        .unwrap_or_else(|| Certificate {
-            origin: xy(points[i]).to_vec(),
-            coefficients: vec![0; rec.basis().dim()],
-            lower: 0,
-            upper: 0,
-            above: None,
-            below: None,
-        });
-        let mut j = i;
-        let mut cut = None;
-        while j + 1 < n {
-            let p = points[j + 1];
-            if rule == OutlierRule::NotInPiece {
-                if let Some((r, l)) = g.outliers.remove(&p) {
-                    if r > 0 {
-                        rec.remove_outlier(&xy(p), Side::Upper);
-                    }
-                    if l > 0 {
-                        rec.remove_outlier(&xy(p), Side::Lower);
-                    }
-                }
-            }
-            rec.add_inlier(&xy(p));
-            *g.in_piece.entry(p).or_default() += 1;
-            if j > i {
-                if let Some(sides) = neighbour_sides(points[j - 1], points[j], p) {
-                    for (q, right, left) in sides {
-                        if !(right || left)
-                            || (rule == OutlierRule::NotInPiece && g.in_piece.contains_key(&q))
-                        {
-                            continue;
-                        }
-                        let e = g.outliers.entry(q).or_default();
-                        if right {
-                            if e.0 == 0 {
-                                rec.add_outlier(&xy(q), Side::Upper);
-                            }
-                            e.0 += 1;
-                        }
-                        if left {
-                            if e.1 == 0 {
-                                rec.add_outlier(&xy(q), Side::Lower);
-                            }
-                            e.1 += 1;
-                        }
-                    }
-                }
-            }
-            rec.set_work_limit(budget.limit(j + 2 - i));
-            match rec.recognize() {
-                Outcome::Described if rec.certificate_into(&mut certificate) => j += 1,
-                Outcome::OverBudget => {
-                    cut = Some(Cut::Budget);
-                    break;
-                }
-                Outcome::Undecided => {
-                    cut = Some(Cut::Undecided);
-                    break;
-                }
-                _ => break,
-            }
-        }
+        let mut certificate = w.begin(rec, i);
+        let stop = w.grow(rec, n - 1, budget, &mut certificate);
         pieces.push(Piece {
             first: i,
-            last: j,
+            last: w.last,
             certificate,
-            cut,
+            cut: stop.cut(),
         });
-        i = j + 1;
+        i = w.last + 1;
     }
     // Most contours of noisy images have one or two pieces: without this, each would keep
     // the capacity of four (about 700 bytes).
@@ -293,31 +273,55 @@ pub fn decompose_within(
     rule: OutlierRule,
     budget: WorkBudget,
 ) -> Decomposition {
-    decompose_reporting(contours, model, rule, budget, &|_| {})
+    decompose_reporting(contours, model, rule, budget, Cover::Greedy, &|_| {})
 }
 
-/// [`decompose_within`], calling `done` with the number of contours decomposed so far after
+/// [`decompose_within`] with the given cover. With [`Cover::Optimal`] a closed contour may
+/// come back rotated (the same cycle of points from another start; see
+/// [`optimal_points`]).
+pub fn decompose_cover(
+    contours: Vec<Contour>,
+    model: Model,
+    rule: OutlierRule,
+    budget: WorkBudget,
+    cover: Cover,
+) -> Decomposition {
+    decompose_reporting(contours, model, rule, budget, cover, &|_| {})
+}
+
+/// A contour's rotation (its new first point) and its pieces.
+type Rotated = (usize, Vec<Piece>);
+
+/// True when the contour's last point is followed by its first and pieces may wrap round:
+/// closed and not repeating its first point at the end (as the IPOL convention does).
+fn wraps(c: &Contour) -> bool {
+    c.closed && c.points.first() != c.points.last()
+}
+
+/// [`decompose_cover`], calling `done` with the number of contours decomposed so far after
 /// each chunk of them (from the worker threads).
 pub(crate) fn decompose_reporting(
     contours: Vec<Contour>,
     model: Model,
     rule: OutlierRule,
     budget: WorkBudget,
+    cover: Cover,
     done: &(dyn Fn(usize) + Sync),
 ) -> Decomposition {
     let finished = std::sync::atomic::AtomicUsize::new(0);
     let basis: Arc<dyn Basis> = Arc::new(model.basis());
-    let results: Vec<(Vec<Vec<Piece>>, Stats)> = contours
+    let one = |c: &Contour, rec: &mut Recognizer| match cover {
+        Cover::Greedy => (0, decompose_points_within(&c.points, rec, rule, budget)),
+        _ => optimal_points(&c.points, wraps(c), rec, rule, budget),
+    };
+    let results: Vec<(Vec<Rotated>, Stats)> = contours
         .par_chunks(CONTOURS_PER_TASK)
         .map_init(
             || Recognizer::new(basis.clone(), &[0, 0]),
             |rec, chunk| match rec.as_mut() {
                 Some(rec) => {
                     let before = rec.stats();
-                    let pieces = chunk
-                        .iter()
-                        .map(|c| decompose_points_within(&c.points, rec, rule, budget))
-                        .collect();
+                    let pieces = chunk.iter().map(|c| one(c, rec)).collect();
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
                     done(n);
                     (pieces, rec.stats().since(&before))
@@ -325,22 +329,29 @@ pub(crate) fn decompose_reporting(
                 None => {
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
                     done(n);
-                    (vec![Vec::new(); chunk.len()], Stats::default())
+                    (vec![(0, Vec::new()); chunk.len()], Stats::default())
                 }
             },
         )
         .collect();
+    let mut contours = contours;
     let mut stats = Stats::default();
     let mut pieces = Vec::with_capacity(contours.len());
     for (p, s) in results {
         stats.add(&s);
-        pieces.extend(p);
+        for (rotation, p) in p {
+            if rotation > 0 {
+                contours[pieces.len()].points.rotate_left(rotation);
+            }
+            pieces.push(p);
+        }
     }
     Decomposition {
         model,
         contours,
         pieces,
         rule,
+        cover,
         stats,
     }
 }
@@ -348,7 +359,7 @@ pub(crate) fn decompose_reporting(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::recognize::recognize;
+    use crate::recognize::{recognize, Outcome};
 
     fn px(v: &[(i32, i32)]) -> Vec<Pixel> {
         v.iter().map(|&(x, y)| Pixel::new(x, y)).collect()
@@ -481,3 +492,6 @@ mod tests {
         assert!(counts[0] >= 4 * counts[1], "line pieces {counts:?}");
     }
 }
+
+#[cfg(test)]
+mod cover_tests;

@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! {"format": "layertrace-decomposition/2", "width": W, "height": H,
-//!  "threshold": 128, "invert": false, "model": "conic",
+//!  "threshold": 128, "invert": false, "model": "conic", "cover": "greedy",
 //!  "basis": ["x^2","x*y","y^2","x","y","1"],
 //!  "contours": [{"hole": false, "points": [[x,y], ...],
 //!                "pieces": [{"first": 0, "last": 17, "origin": [x0,y0],
@@ -13,6 +13,10 @@
 //! A piece that ended before a point that might have extended it has a `"cut"` member
 //! after `"kind"`: `"budget"` (its work budget ran out, see [`crate::WorkBudget`]) or
 //! `"undecided"`.
+//!
+//! `"cover"` names the cover the pieces form ([`crate::Cover`]): `"greedy"` (the paper's)
+//! or `"optimal"` (the fewest pieces; a closed contour's `points` may then start elsewhere
+//! than where tracing started, at the first cut).
 //!
 //! `f(x, y) = Σ coefficients[i] · basis_i(x − x0, y − y0)`; every inlier has
 //! `lower ≤ f ≤ upper`, the RIGHT outliers are strictly above `upper` and the LEFT ones
@@ -53,12 +57,13 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
     // Writing to a String cannot fail.
     let _ = write!(
         s,
-        "{{\"format\": \"layertrace-decomposition/2\", \"width\": {}, \"height\": {},\n \"threshold\": {}, \"invert\": {}, \"model\": {},\n \"basis\": [{}],\n \"contours\": [",
+        "{{\"format\": \"layertrace-decomposition/2\", \"width\": {}, \"height\": {},\n \"threshold\": {}, \"invert\": {}, \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"contours\": [",
         header.width,
         header.height,
         header.threshold,
         header.invert,
         quote(&d.model.name()),
+        quote(d.cover.name()),
         names.join(",")
     );
     for (ci, (c, pieces)) in d.contours.iter().zip(&d.pieces).enumerate() {
@@ -156,6 +161,7 @@ mod tests {
             let text = decomposition_json(&d, &header);
             let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
             assert_eq!(v["format"], "layertrace-decomposition/2");
+            assert_eq!(v["cover"], "greedy");
             assert_eq!(
                 v["basis"].as_array().unwrap().len(),
                 model.basis().dim() + 1

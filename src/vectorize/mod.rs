@@ -187,7 +187,14 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
     };
     let on_decompose = progress(Stage::Decompose);
     let on_draw = progress(Stage::Draw);
-    let d = decompose_reporting(contours, options.model, rule, options.budget, &on_decompose);
+    let d = decompose_reporting(
+        contours,
+        options.model,
+        rule,
+        options.budget,
+        options.cover,
+        &on_decompose,
+    );
 
     let json = options.json.then(|| {
         decomposition_json(

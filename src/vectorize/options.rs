@@ -5,7 +5,7 @@ use std::fmt;
 use std::sync::Arc;
 
 use crate::bitmap::{default_max_memory, Compat, Threshold};
-use crate::decompose::WorkBudget;
+use crate::decompose::{Cover, WorkBudget};
 use crate::export::svg::SvgOptions;
 use crate::model::Model;
 
@@ -82,6 +82,8 @@ pub struct Options {
     pub max_memory: u64,
     /// The work budget of each piece's recognition.
     pub budget: WorkBudget,
+    /// How each contour is cut into pieces. Default [`Cover::Greedy`] (the paper's).
+    pub cover: Cover,
     /// Run on this thread pool instead of rayon's global one.
     pub pool: Option<Arc<rayon::ThreadPool>>,
     /// Told of the progress of the long stages.
@@ -103,6 +105,7 @@ impl Default for Options {
             max_pixels: 400_000_000,
             max_memory: default_max_memory(),
             budget: WorkBudget::default(),
+            cover: Cover::default(),
             pool: None,
             progress: None,
         }
@@ -124,6 +127,7 @@ impl fmt::Debug for Options {
             .field("max_pixels", &self.max_pixels)
             .field("max_memory", &self.max_memory)
             .field("budget", &self.budget)
+            .field("cover", &self.cover)
             .field("pool", &self.pool.as_ref().map(|p| p.current_num_threads()))
             .field("progress", &self.progress.is_some())
             .finish()
@@ -218,6 +222,12 @@ impl Options {
     /// The work budget of each piece's recognition.
     pub fn budget(mut self, budget: WorkBudget) -> Options {
         self.budget = budget;
+        self
+    }
+
+    /// How each contour is cut into pieces (see [`Cover`]).
+    pub fn cover(mut self, cover: Cover) -> Options {
+        self.cover = cover;
         self
     }
 
