@@ -3,9 +3,12 @@
 //! the same whatever the number of threads.
 
 use layertrace::{
-    decompose, decompose_within, decomposition_json, piece_outliers, trace, Basis, Convention, Cut,
+    decompose, decompose_within, decomposition_json, piece_outliers, trace, Convention, Cut,
     Decomposition, JsonHeader, Mask, Model, OutlierRule, Pixel, WorkBudget,
 };
+
+mod common;
+use common::value;
 
 /// `n × n` pixels, each foreground with probability 1/2 (xorshift, fixed seed).
 fn noise(n: u32, seed: u64) -> Mask {
@@ -19,15 +22,6 @@ fn noise(n: u32, seed: u64) -> Mask {
         })
         .collect();
     Mask::from_fn(n, n, |x, y| bits[(y * n + x) as usize])
-}
-
-/// `a·F(p − origin)` with this file's own loop.
-fn value(basis: &dyn Basis, origin: &[i64], a: &[i64], p: Pixel) -> i128 {
-    let mut f = vec![0i64; basis.dim()];
-    basis
-        .lift(&[p.x as i64 - origin[0], p.y as i64 - origin[1]], &mut f)
-        .unwrap();
-    f.iter().zip(a).map(|(&x, &y)| x as i128 * y as i128).sum()
 }
 
 /// Every piece tiles its contour and its certificate holds exactly on its own sets.

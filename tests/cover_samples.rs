@@ -3,33 +3,14 @@
 //! certificates checked here independently; and the CLI's `--cover` reaching the JSON.
 
 use layertrace::{
-    decompose, decompose_cover, load_path, piece_outliers, trace, Basis, Convention, Cover,
-    LoadOptions, Model, OutlierRule, Pixel, WorkBudget,
+    decompose, decompose_cover, load_path, piece_outliers, trace, Convention, Cover, LoadOptions,
+    Model, OutlierRule, Pixel, WorkBudget,
 };
 use std::path::Path;
 use std::process::Command;
 
-fn samples() -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir("samples")
-        .unwrap()
-        .filter_map(|e| {
-            let p = e.ok()?.path();
-            (p.extension()? == "png").then(|| p.to_string_lossy().into_owned())
-        })
-        .collect();
-    v.sort();
-    assert!(v.len() >= 15, "samples missing: {v:?}");
-    v
-}
-
-/// `a·F(p − origin)` computed here, with this file's own loop.
-fn value(basis: &dyn Basis, origin: &[i64], a: &[i64], p: Pixel) -> i128 {
-    let mut f = vec![0i64; basis.dim()];
-    basis
-        .lift(&[p.x as i64 - origin[0], p.y as i64 - origin[1]], &mut f)
-        .unwrap();
-    f.iter().zip(a).map(|(&x, &y)| x as i128 * y as i128).sum()
-}
+mod common;
+use common::{samples, value};
 
 /// True when `b` is `a` started at another point.
 fn is_rotation(a: &[Pixel], b: &[Pixel]) -> bool {

@@ -9,18 +9,8 @@ use std::path::Path;
 use std::process::Command;
 use std::sync::Arc;
 
-fn samples() -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir("samples")
-        .unwrap()
-        .filter_map(|e| {
-            let p = e.ok()?.path();
-            (p.extension()? == "png").then(|| p.to_string_lossy().into_owned())
-        })
-        .collect();
-    v.sort();
-    assert!(v.len() >= 15, "samples missing: {v:?}");
-    v
-}
+mod common;
+use common::{samples, value};
 
 fn run(path: &str, model: Model) -> Decomposition {
     let loaded = load_path(Path::new(path), &LoadOptions::default()).unwrap();
@@ -29,15 +19,6 @@ fn run(path: &str, model: Model) -> Decomposition {
         model,
         OutlierRule::NotInPiece,
     )
-}
-
-/// `a·F(p − origin)` computed here, with this file's own loop (not the library's).
-fn value(basis: &dyn Basis, origin: &[i64], a: &[i64], p: Pixel) -> i128 {
-    let mut f = vec![0i64; basis.dim()];
-    basis
-        .lift(&[p.x as i64 - origin[0], p.y as i64 - origin[1]], &mut f)
-        .unwrap();
-    f.iter().zip(a).map(|(&x, &y)| x as i128 * y as i128).sum()
 }
 
 fn xy(p: &Pixel) -> Vec<i64> {

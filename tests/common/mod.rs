@@ -1,7 +1,9 @@
-//! Helpers shared by the integration tests that run the command-line tool.
+//! Helpers shared by the integration tests: running the command-line tool, the bundled
+//! samples, and layer values computed independently of the library.
 // Each test binary uses its own subset of these.
 #![allow(dead_code)]
 
+use layertrace::{Basis, Pixel};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -37,4 +39,27 @@ pub fn names(dir: &Path) -> Vec<String> {
         .collect();
     v.sort();
     v
+}
+
+/// The bundled `samples/*.png`, sorted (at least 15 of them).
+pub fn samples() -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir("samples")
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "png").then(|| p.to_string_lossy().into_owned())
+        })
+        .collect();
+    v.sort();
+    assert!(v.len() >= 15, "samples missing: {v:?}");
+    v
+}
+
+/// `a·F(p − origin)` computed with the tests' own loop, not the library's evaluation.
+pub fn value(basis: &dyn Basis, origin: &[i64], a: &[i64], p: Pixel) -> i128 {
+    let mut f = vec![0i64; basis.dim()];
+    basis
+        .lift(&[p.x as i64 - origin[0], p.y as i64 - origin[1]], &mut f)
+        .unwrap();
+    f.iter().zip(a).map(|(&x, &y)| x as i128 * y as i128).sum()
 }
