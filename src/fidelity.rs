@@ -32,7 +32,7 @@
 //!
 //! [`staircases`] counts pixel staircases in the path data (see its module).
 
-use crate::bitmap::Mask;
+use crate::bitmap::{border_distance, Mask};
 use crate::error::Error;
 
 mod staircase;
@@ -52,6 +52,46 @@ pub struct FidelityReport {
     pub differing: u64,
     /// Intersection over union of the two foregrounds (1 when both are empty).
     pub iou: f64,
+}
+
+/// Where the differing pixels of a smooth outline lie (see [`band_check`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BandCheck {
+    /// The ν checked against.
+    pub nu: f64,
+    /// Differing pixels.
+    pub differing: u64,
+    /// Differing pixels farther than ν from the border (0 when the guarantee holds).
+    pub beyond: u64,
+    /// Largest distance to the border of a differing pixel (0 when none differs).
+    pub max_distance: f64,
+}
+
+/// Checks the guarantee of a smooth outline: every pixel where `rendered` differs from
+/// `expected` lies within `nu` of `expected`'s border (the distance from its centre to the
+/// nearest pixel square of the other colour, see [`crate::bitmap::Band`]).
+pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
+    let mut out = BandCheck {
+        nu,
+        differing: 0,
+        beyond: 0,
+        max_distance: 0.0,
+    };
+    let limit = nu.max(0.0) + 4.0;
+    for y in 0..i64::from(expected.height()) {
+        for x in 0..i64::from(expected.width()) {
+            if expected.get(x, y) == rendered.get(x, y) {
+                continue;
+            }
+            out.differing += 1;
+            let d = border_distance(expected, x, y, limit).unwrap_or(f64::INFINITY);
+            out.max_distance = out.max_distance.max(d);
+            if d > nu {
+                out.beyond += 1;
+            }
+        }
+    }
+    out
 }
 
 /// The pixmap `resvg --shape-rendering crispEdges` paints for `svg`, at `width` × `height`.

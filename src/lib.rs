@@ -80,8 +80,8 @@ pub use vectorize::{
 };
 
 pub use bitmap::{
-    default_max_memory, load_memory, load_path, parse_memory_size, threshold_image, Cleaned,
-    Compat, LoadOptions, Loaded, Mask, Threshold,
+    border_distance, default_max_memory, load_memory, load_path, parse_memory_size,
+    threshold_image, Band, Cleaned, Compat, LoadOptions, Loaded, Mask, Threshold, MAX_BAND,
 };
 pub use contour::{trace, Contour, Convention};
 pub use curve::{
@@ -101,10 +101,10 @@ pub use estimate::{
 pub use export::format::{document_bytes, Format, PictureFormat};
 pub use export::json::{decomposition_json, JsonHeader};
 pub use export::picture::{decomposition_picture, default_scale};
-pub use export::svg::{svg_document, SvgOptions, SvgOutput};
+pub use export::svg::{smooth_svg_document, svg_document, SvgOptions, SvgOutput};
 pub use fidelity::{
-    compare, diff_image, fidelity, path_staircases, rasterize_svg, staircases, FidelityReport,
-    StaircaseCount,
+    band_check, compare, diff_image, fidelity, path_staircases, rasterize_svg, staircases,
+    BandCheck, FidelityReport, StaircaseCount,
 };
 pub use level::{
     border_polynomial, boundary_level, curve_kind, level_polynomial, piece_kind, polynomial_of,

@@ -15,6 +15,7 @@
 //! [`LoadOptions::turdsize`]) follow potrace's companion mkbitmap and its `-t` option.
 
 mod adaptive;
+mod band;
 mod clean;
 mod grey;
 mod input;
@@ -26,6 +27,7 @@ mod png;
 #[cfg(test)]
 mod tests;
 
+pub use band::{border_distance, Band, MAX_BAND};
 pub use clean::Cleaned;
 pub use grey::Compat;
 pub use input::{default_max_memory, parse_memory_size};

@@ -121,6 +121,15 @@ pub struct Args {
     #[arg(long, value_name = "greedy|optimal", default_value = "greedy")]
     pub cover: Cover,
 
+    /// Smooth curves instead of the exact outline, for scans and design work: the outline
+    /// may pass anywhere within NU pixels of the border (0 < NU <= 16; 1 is a good start).
+    /// Guarantee: every pixel the SVG renders differently (resvg, crispEdges) lies within NU
+    /// of the input's border, measured from its centre to the nearest pixel square of the
+    /// other colour (a pixel beside the border is at 0.5); --report prints the largest such
+    /// distance. Not with --compat ipol.
+    #[arg(long, value_name = "NU")]
+    pub smooth: Option<f64>,
+
     /// Foreground is luma < N (0..=255), 'otsu' for Otsu's threshold, or 'adaptive' for a
     /// local threshold that ignores lighting gradients and shadows (scans, photographs of
     /// pages; Sauvola's rule over a window of radius R pixels, 1 to 1000, default 16, with

@@ -115,6 +115,7 @@ pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPoo
         .fidelity(args.report || outputs.diff.is_some())
         .json(outputs.json.is_some());
     o.threshold = args.threshold;
+    o.smooth = args.smooth;
     o.svg = (outputs.svg.is_some() || args.report || outputs.diff.is_some()).then(|| SvgOptions {
         fill: args.fill.clone(),
         grid: args.grid,
@@ -254,6 +255,15 @@ fn report(v: &Vectorized) -> Result<String, Error> {
         "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}\n",
         r.differing, r.missing, r.extra, pct, r.foreground, r.iou
     );
+    if let Some(b) = f.band {
+        text += &format!(
+            "smooth: {} differing pixels within {} px of the border (largest distance {:.3} px), {} beyond\n",
+            b.differing - b.beyond,
+            b.nu,
+            b.max_distance,
+            b.beyond
+        );
+    }
     let c = out.commands;
     let fb = out.fallback_reasons;
     text += &format!(

@@ -18,11 +18,12 @@
 //! nearby borders crossing near a thin background gap, or a bridge segment folding back)
 //! stay filled instead of cancelling out.
 
+use crate::bitmap::Band;
 use crate::curve::PathCommand;
 use crate::decompose::Decomposition;
 use crate::outline::{
-    contour_path, CommandCounts, ContourPath, EdgeClipping, FallbackCounts, JoinCounts,
-    OutlineOptions, MAX_GRID,
+    band_contour_path, contour_path, has_staircase, CommandCounts, ContourPath, EdgeClipping,
+    FallbackCounts, JoinCounts, OutlineOptions, MAX_GRID,
 };
 use kurbo::Point;
 use rayon::prelude::*;
@@ -244,7 +245,37 @@ fn xml_escape(v: &str) -> String {
 /// `fill-rule="nonzero"`, outer borders counter-clockwise, holes clockwise, width, height
 /// and viewBox the image size in pixels.
 pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOptions) -> SvgOutput {
-    svg_document_reporting(d, width, height, opts, &|_| {})
+    svg_document_reporting(d, width, height, opts, None, &|_| {})
+}
+
+/// The smooth SVG document of a decomposition of `mask`: every contour drawn with curves
+/// through the border band of `band` (the pixels within ν of `mask`'s border) instead of
+/// along its pieces, so that every pixel resvg (crispEdges) draws differently from `mask`
+/// is within ν of the border. The pieces are not used (only the contours).
+///
+/// ```
+/// use layertrace::{decompose, fidelity, smooth_svg_document, trace, Band, Convention, Mask,
+///                  Model, OutlierRule, SvgOptions};
+///
+/// let mask = Mask::from_fn(40, 40, |x, y| {
+///     let (dx, dy) = (x as f64 - 19.5, y as f64 - 19.5);
+///     dx * dx + dy * dy <= 15.0 * 15.0
+/// });
+/// let band = Band::new(&mask, 1.0).unwrap();
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let svg = smooth_svg_document(&d, &band, 40, 40, &SvgOptions::default());
+/// let report = fidelity(&svg.svg, &mask).unwrap();
+/// assert!(svg.commands.cubic > 0 && svg.commands.line == 0);
+/// println!("{} px differ, all within 1 px of the border", report.differing);
+/// ```
+pub fn smooth_svg_document(
+    d: &Decomposition,
+    band: &Band,
+    width: u32,
+    height: u32,
+    opts: &SvgOptions,
+) -> SvgOutput {
+    svg_document_reporting(d, width, height, opts, Some(band), &|_| {})
 }
 
 /// [`svg_document`], calling `done` with the number of contours drawn so far after each
@@ -254,6 +285,7 @@ pub(crate) fn svg_document_reporting(
     width: u32,
     height: u32,
     opts: &SvgOptions,
+    band: Option<&Band>,
     done: &(dyn Fn(usize) + Sync),
 ) -> SvgOutput {
     let basis = d.model.basis();
@@ -296,7 +328,24 @@ pub(crate) fn svg_document_reporting(
             .enumerate()
             .map(|(k, contour)| {
                 let pieces = d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
-                let mut cp = contour_path(contour, pieces, &basis, &outline);
+                let exact = || contour_path(contour, pieces, &basis, &outline);
+                let mut cp = match band {
+                    // The exact drawing meets the band's guarantee too: the one with fewer
+                    // commands, unless the exact one has a pixel staircase.
+                    Some(band) => {
+                        let exact = exact();
+                        match band_contour_path(contour, band, &outline) {
+                            Some(smooth)
+                                if smooth.counts().total() <= exact.counts().total()
+                                    || has_staircase(exact.start, &exact.commands) =>
+                            {
+                                smooth
+                            }
+                            _ => exact,
+                        }
+                    }
+                    None => exact(),
+                };
                 drop_closing_line(&mut cp);
                 let mut data = String::new();
                 write_path_data(&cp, precision, &mut data);

@@ -7,7 +7,7 @@ pub use options::{Options, Progress, ProgressFn, Stage};
 
 use std::path::{Path, PathBuf};
 
-use crate::bitmap::{load_memory, load_path, Cleaned, Compat, LoadOptions, Mask};
+use crate::bitmap::{load_memory, load_path, Band, Cleaned, Compat, LoadOptions, Mask, MAX_BAND};
 use crate::contour::{trace, Contour, Convention};
 use crate::decompose::{decompose_reporting, Decomposition, OutlierRule};
 use crate::error::Error;
@@ -15,7 +15,7 @@ use crate::estimate::work_estimate;
 use crate::export::json::{decomposition_json, JsonHeader};
 use crate::export::picture::{decomposition_picture, default_scale};
 use crate::export::svg::{svg_document_reporting, SvgOutput};
-use crate::fidelity::{compare, rasterize_svg, FidelityReport};
+use crate::fidelity::{band_check, compare, rasterize_svg, BandCheck, FidelityReport};
 use crate::output::png_bytes;
 
 /// What [`vectorize`] reads.
@@ -79,6 +79,8 @@ pub struct Fidelity {
     pub report: FidelityReport,
     /// The SVG as `resvg --shape-rendering crispEdges` draws it.
     pub rendered: Mask,
+    /// With [`Options::smooth`]: how far from the border the differing pixels are.
+    pub band: Option<BandCheck>,
 }
 
 /// Everything [`vectorize`] made.
@@ -140,6 +142,18 @@ pub fn vectorize<'a>(
 
 fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
     let name = source.name();
+    if let Some(nu) = options.smooth {
+        if !(nu > 0.0 && nu <= MAX_BAND) {
+            return Err(Error::Arguments(format!(
+                "smooth: {nu} is not a distance in (0, {MAX_BAND}] pixels"
+            )));
+        }
+        if options.compat == Compat::Ipol {
+            return Err(Error::Arguments(
+                "smooth: not with the IPOL conventions (--compat ipol)".into(),
+            ));
+        }
+    }
     let load = LoadOptions {
         threshold: options.effective_threshold(),
         invert: options.invert,
@@ -223,15 +237,19 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
             })?)
         }
     };
-    let svg = options
-        .svg
-        .as_ref()
-        .map(|o| svg_document_reporting(&d, mask.width(), mask.height(), o, &on_draw));
+    let band = match (options.smooth, &options.svg) {
+        (Some(nu), Some(_)) => Band::new(&mask, nu),
+        _ => None,
+    };
+    let svg = options.svg.as_ref().map(|o| {
+        svg_document_reporting(&d, mask.width(), mask.height(), o, band.as_ref(), &on_draw)
+    });
     let fidelity = match (&svg, options.fidelity) {
         (Some(svg), true) => {
             let rendered = rasterize_svg(&svg.svg, mask.width(), mask.height())?;
             Some(Fidelity {
                 report: compare(&mask, &rendered),
+                band: band.as_ref().map(|b| band_check(&mask, &rendered, b.nu())),
                 rendered,
             })
         }

@@ -84,6 +84,12 @@ pub struct Options {
     pub budget: WorkBudget,
     /// How each contour is cut into pieces. Default [`Cover::Greedy`] (the paper's).
     pub cover: Cover,
+    /// Draw smooth curves within this many pixels of the border instead of the exact
+    /// outline (see [`smooth_svg_document`](crate::smooth_svg_document)): every pixel the
+    /// SVG renders differently lies within ν of the border. `None` (default): exact.
+    /// Values outside `0 < ν <= MAX_BAND` are refused by [`vectorize`](crate::vectorize);
+    /// not with [`Compat::Ipol`].
+    pub smooth: Option<f64>,
     /// Run on this thread pool instead of rayon's global one.
     pub pool: Option<Arc<rayon::ThreadPool>>,
     /// Told of the progress of the long stages.
@@ -106,6 +112,7 @@ impl Default for Options {
             max_memory: default_max_memory(),
             budget: WorkBudget::default(),
             cover: Cover::default(),
+            smooth: None,
             pool: None,
             progress: None,
         }
@@ -128,6 +135,7 @@ impl fmt::Debug for Options {
             .field("max_memory", &self.max_memory)
             .field("budget", &self.budget)
             .field("cover", &self.cover)
+            .field("smooth", &self.smooth)
             .field("pool", &self.pool.as_ref().map(|p| p.current_num_threads()))
             .field("progress", &self.progress.is_some())
             .finish()
@@ -228,6 +236,12 @@ impl Options {
     /// How each contour is cut into pieces (see [`Cover`]).
     pub fn cover(mut self, cover: Cover) -> Options {
         self.cover = cover;
+        self
+    }
+
+    /// Smooth curves within `nu` pixels of the border (see [`Options::smooth`]).
+    pub fn smooth(mut self, nu: f64) -> Options {
+        self.smooth = Some(nu);
         self
     }
 
