@@ -16,6 +16,7 @@
 
 mod adaptive;
 mod clean;
+pub(crate) mod colour;
 mod grey;
 mod input;
 mod jpeg;
@@ -27,6 +28,10 @@ mod png;
 mod tests;
 
 pub use clean::Cleaned;
+pub use colour::{
+    alpha_mask, colour_regions, decode_rgba, has_transparency, load_rgba, Colour, ColourImage,
+    Regions, MAX_COLOURS, OPAQUE_ALPHA,
+};
 pub use grey::Compat;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};

@@ -225,7 +225,7 @@ fn drop_closing_line(cp: &mut ContourPath) {
 }
 
 /// Escapes the five XML special characters of an attribute value.
-fn xml_escape(v: &str) -> String {
+pub(crate) fn xml_escape(v: &str) -> String {
     let mut s = String::with_capacity(v.len());
     for ch in v.chars() {
         match ch {
@@ -256,11 +256,30 @@ pub(crate) fn svg_document_reporting(
     opts: &SvgOptions,
     done: &(dyn Fn(usize) + Sync),
 ) -> SvgOutput {
-    let basis = d.model.basis();
+    let outline = outline_options(opts);
+    let header = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
+         height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
+    );
+    let paths = path_data(d, &outline, done);
+    let mut svg = header;
+    if !paths.data.is_empty() {
+        let _ = write!(
+            svg,
+            "<path fill=\"{}\" fill-rule=\"nonzero\" d=\"",
+            xml_escape(&opts.fill)
+        );
+        svg.push_str(&paths.data);
+        svg.push_str("\"/>\n");
+    }
+    svg.push_str("</svg>\n");
+    paths.into_output(svg)
+}
+
+/// The outline options of [`SvgOptions`].
+pub(crate) fn outline_options(opts: &SvgOptions) -> OutlineOptions {
     let grid = opts.grid.min(MAX_GRID);
-    // Multiples of 2^-grid have at most `grid` decimals: written exactly.
-    let precision = usize::from(grid);
-    let outline = OutlineOptions {
+    OutlineOptions {
         tolerance: opts.tolerance,
         min_clearance: if opts.min_clearance >= 0.0 {
             opts.min_clearance
@@ -274,19 +293,67 @@ pub(crate) fn svg_document_reporting(
         // image left 26 px wrong in Chromium on the 27 shared samples instead of 12 (conic),
         // for 14% less time.
         clipping: EdgeClipping::Unknown,
-    };
+    }
+}
+
+/// The path data of every contour of a decomposition, and what went into it.
+pub(crate) struct PathData {
+    /// The `d` attribute's value (empty without contours).
+    pub(crate) data: String,
+    commands: CommandCounts,
+    max_fit_error: f64,
+    fallbacks: FallbackCounts,
+    joins: JoinCounts,
+}
+
+impl PathData {
+    /// The [`SvgOutput`] of the document `svg` drawn with these paths alone.
+    pub(crate) fn into_output(self, svg: String) -> SvgOutput {
+        let mut out = empty_output(svg);
+        out.add(&self);
+        out
+    }
+}
+
+/// An [`SvgOutput`] of `svg` with no command counted.
+pub(crate) fn empty_output(svg: String) -> SvgOutput {
+    SvgOutput {
+        svg,
+        commands: CommandCounts::default(),
+        max_fit_error: 0.0,
+        fallbacks: 0,
+        fallback_reasons: FallbackCounts::default(),
+        joins: JoinCounts::default(),
+    }
+}
+
+impl SvgOutput {
+    /// Counts the commands, fallbacks and joins of `paths` in this output.
+    pub(crate) fn add(&mut self, paths: &PathData) {
+        self.commands.add(&paths.commands);
+        self.fallback_reasons.add(&paths.fallbacks);
+        self.fallbacks = self.fallback_reasons.total();
+        self.joins.add(&paths.joins);
+        self.max_fit_error = self.max_fit_error.max(paths.max_fit_error);
+    }
+}
+
+/// Draws every contour of `d` (see [`crate::outline`]) and writes its path data, calling
+/// `done` with the number of contours drawn so far after each group of them.
+pub(crate) fn path_data(
+    d: &Decomposition,
+    outline: &OutlineOptions,
+    done: &(dyn Fn(usize) + Sync),
+) -> PathData {
+    let basis = d.model.basis();
+    // Multiples of 2^-grid have at most `grid` decimals: written exactly.
+    let precision = usize::from(outline.grid);
     let mut commands = CommandCounts::default();
     let mut fallbacks = FallbackCounts::default();
     let mut joins = JoinCounts::default();
     let mut max_fit_error = 0.0f64;
     let empty = Vec::new();
     let mut svg = String::new();
-    let _ = writeln!(
-        svg,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
-         height=\"{height}\" viewBox=\"0 0 {width} {height}\">"
-    );
-    let mut opened = false;
     // Contours are drawn independently, in parallel, a group at a time (only the group's
     // path data is held besides the document); appended in order, so the document does not
     // depend on the number of threads.
@@ -296,7 +363,7 @@ pub(crate) fn svg_document_reporting(
             .enumerate()
             .map(|(k, contour)| {
                 let pieces = d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
-                let mut cp = contour_path(contour, pieces, &basis, &outline);
+                let mut cp = contour_path(contour, pieces, &basis, outline);
                 drop_closing_line(&mut cp);
                 let mut data = String::new();
                 write_path_data(&cp, precision, &mut data);
@@ -312,29 +379,14 @@ pub(crate) fn svg_document_reporting(
             fallbacks.add(&cp.fallbacks);
             joins.add(&cp.joins);
             max_fit_error = max_fit_error.max(cp.max_fit_error);
-            if !data.is_empty() {
-                if !opened {
-                    let _ = write!(
-                        svg,
-                        "<path fill=\"{}\" fill-rule=\"nonzero\" d=\"",
-                        xml_escape(&opts.fill)
-                    );
-                    opened = true;
-                }
-                svg.push_str(&data);
-            }
+            svg.push_str(&data);
         }
     }
-    if opened {
-        svg.push_str("\"/>\n");
-    }
-    svg.push_str("</svg>\n");
-    SvgOutput {
-        svg,
+    PathData {
+        data: svg,
         commands,
         max_fit_error,
-        fallbacks: fallbacks.total(),
-        fallback_reasons: fallbacks,
+        fallbacks,
         joins,
     }
 }
