@@ -227,6 +227,12 @@ fn command_line() {
         .pixels()
         .all(|p| p.0 != [255, 0, 0] && p.0 != [0, 0, 255]));
     assert!(dir.path().join("l.json").exists());
+    // The same drawing as PDF: one fill per colour.
+    let (code, err) = cli_in(dir.path(), &[logo, "--colors", "4", "-o", "l.pdf"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read(dir.path().join("l.pdf"))
+        .unwrap()
+        .starts_with(b"%PDF"));
     // Bad values and combinations are usage errors; no panic.
     for args in [
         &[logo, "--colors", "0"][..],

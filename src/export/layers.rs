@@ -1,7 +1,7 @@
 //! The SVG of a colour image: one `<path>` per colour, drawn in order (`--layout stack`).
 //!
-//! The document is that of [`svg_document`](super::svg::svg_document) (same header but
-//! for the viewBox's origin, same path data, `fill-rule="nonzero"`), with one
+//! The document is that of [`svg_document`](super::svg::svg_document) (same header, same
+//! path data, `fill-rule="nonzero"`; PDF and EPS read it as well), with one
 //! `<path fill="#rrggbb" …>` per layer in drawing order instead of one path; a layer
 //! without contours writes no path. In the
 //! stack layout layer `k` covers the pixels of colour `k` and of every colour drawn after
@@ -27,8 +27,8 @@ pub struct SvgLayer<'a> {
 /// The SVG document of `layers` drawn in order over a `width` × `height` image, with the
 /// outline options of `opts` (its `fill` is not used: each layer has its own). The
 /// layers' contours are in the coordinates of the image padded by `margin` pixels on every
-/// side (image pixel `(x, y)` is `(x + margin, y + margin)`): the viewBox is
-/// `margin margin width height`. The output's counts are those of all layers.
+/// side (image pixel `(x, y)` is `(x + margin, y + margin)`), and are written moved back
+/// into the image's. The output's counts are those of all layers.
 pub fn layers_document(
     layers: &[SvgLayer<'_>],
     width: u32,
@@ -41,11 +41,11 @@ pub fn layers_document(
     let _ = writeln!(
         svg,
         "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
-         height=\"{height}\" viewBox=\"{margin} {margin} {width} {height}\">"
+         height=\"{height}\" viewBox=\"0 0 {width} {height}\">"
     );
     let mut drawn = Vec::with_capacity(layers.len());
     for layer in layers {
-        let paths = path_data(layer.decomposition, &outline, &|_| {});
+        let paths = path_data(layer.decomposition, &outline, margin, &|_| {});
         if !paths.data.is_empty() {
             let _ = writeln!(
                 svg,

@@ -155,12 +155,16 @@ fn push_number(v: f64, precision: usize, after_number: bool, s: &mut String) {
 /// Exact: every point is on the 2^-grid grid, so each difference is a dyadic number with at
 /// most `precision` decimals, written exactly, and the sum a renderer forms again (in `f64`
 /// in usvg, in `f32` in Skia: exact below 2^24 grid units) is the point itself.
-fn write_path_data(cp: &ContourPath, precision: usize, s: &mut String) {
+///
+/// Every absolute point (`M`, `A`) is written moved by `-shift` in x and y (an integer
+/// shift keeps the points exact and the relative numbers the same).
+fn write_path_data(cp: &ContourPath, precision: usize, shift: f64, s: &mut String) {
     if cp.commands.is_empty() {
         return;
     }
+    let moved = |p: Point| Point::new(p.x - shift, p.y - shift);
     s.push('M');
-    point(cp.start, precision, s);
+    point(moved(cp.start), precision, s);
     let mut pen = cp.start;
     let mut last = 'M';
     for c in &cp.commands {
@@ -198,7 +202,7 @@ fn write_path_data(cp: &ContourPath, precision: usize, s: &mut String) {
                 s.push(' ');
                 number(a.x_rotation.to_degrees().rem_euclid(360.0), precision, s);
                 let _ = write!(s, " {} {} ", u8::from(a.large_arc), u8::from(a.sweep));
-                point(a.to, precision, s);
+                point(moved(a.to), precision, s);
                 pen = a.to;
                 last = 'A';
                 continue;
@@ -261,7 +265,7 @@ pub(crate) fn svg_document_reporting(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
          height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
     );
-    let paths = path_data(d, &outline, done);
+    let paths = path_data(d, &outline, 0, done);
     let mut svg = header;
     if !paths.data.is_empty() {
         let _ = write!(
@@ -338,13 +342,16 @@ impl SvgOutput {
     }
 }
 
-/// Draws every contour of `d` (see [`crate::outline`]) and writes its path data, calling
-/// `done` with the number of contours drawn so far after each group of them.
+/// Draws every contour of `d` (see [`crate::outline`]) and writes its path data, moved by
+/// `-shift` pixels in x and y, calling `done` with the number of contours drawn so far
+/// after each group of them.
 pub(crate) fn path_data(
     d: &Decomposition,
     outline: &OutlineOptions,
+    shift: u32,
     done: &(dyn Fn(usize) + Sync),
 ) -> PathData {
+    let shift = f64::from(shift);
     let basis = d.model.basis();
     // Multiples of 2^-grid have at most `grid` decimals: written exactly.
     let precision = usize::from(outline.grid);
@@ -366,7 +373,7 @@ pub(crate) fn path_data(
                 let mut cp = contour_path(contour, pieces, &basis, outline);
                 drop_closing_line(&mut cp);
                 let mut data = String::new();
-                write_path_data(&cp, precision, &mut data);
+                write_path_data(&cp, precision, shift, &mut data);
                 // Only the counts are kept: the commands are written.
                 let counts = cp.counts();
                 cp.commands = Vec::new();

@@ -16,8 +16,9 @@
 //! into the margin instead of along the edge, and the first layer of an opaque image is a
 //! rectangle one pixel larger than the image on every side. Traced unpadded, a curve piece
 //! along the edge may cut a corner off an edge pixel (its centre still inside): exact in
-//! crispEdges but a sliver of background anti-aliased. The SVG's viewBox starts at (1, 1),
-//! and resvg clips what lies outside it.
+//! crispEdges but a sliver of background anti-aliased. The path data is written moved
+//! back by one pixel (exact: an integer shift), and renderers clip what lies outside the
+//! image.
 //!
 //! # The order
 //! Greedy, to keep the masks' borders short: the first layer is every pixel of a region;
