@@ -35,7 +35,10 @@
 use crate::bitmap::{border_distance, Mask};
 use crate::error::Error;
 
+mod colour;
 mod staircase;
+
+pub use colour::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
 
 pub use staircase::{path_staircases, staircases, StaircaseCount};
 
@@ -96,8 +99,19 @@ pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
 
 /// The pixmap `resvg --shape-rendering crispEdges` paints for `svg`, at `width` × `height`.
 fn render(svg: &str, width: u32, height: u32) -> Result<tiny_skia::Pixmap, Error> {
+    render_with(svg, width, height, usvg::ShapeRendering::CrispEdges)
+}
+
+/// The pixmap resvg paints for `svg` at `width` × `height` with `shape_rendering` as the
+/// default shape rendering.
+fn render_with(
+    svg: &str,
+    width: u32,
+    height: u32,
+    shape_rendering: usvg::ShapeRendering,
+) -> Result<tiny_skia::Pixmap, Error> {
     let options = usvg::Options {
-        shape_rendering: usvg::ShapeRendering::CrispEdges,
+        shape_rendering,
         ..usvg::Options::default()
     };
     let tree = usvg::Tree::from_str(svg, &options).map_err(|source| Error::SvgParse { source })?;

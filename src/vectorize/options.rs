@@ -30,6 +30,27 @@ pub struct Progress {
     pub total: u64,
 }
 
+/// How the regions of a colour image are drawn ([`Options::colors`]).
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Layout {
+    /// One path per colour, drawn in a fixed order; each covers the pixels of its colour
+    /// and of the colours drawn after it (which paint over it), never those of the colours
+    /// drawn before it. Exact in crispEdges; no background shows between regions when
+    /// anti-aliased.
+    #[default]
+    Stack,
+}
+
+impl Layout {
+    /// The name on the command line and in the JSON: `stack`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layout::Stack => "stack",
+        }
+    }
+}
+
 /// A callback told of progress, from any worker thread: once per chunk of 256 contours while
 /// decomposing, once per group of 4 096 while drawing. Calls from different threads may
 /// arrive out of order.
@@ -68,6 +89,16 @@ pub struct Options {
     pub compat: Compat,
     /// The SVG's options; `None` draws no SVG (and checks no fidelity).
     pub svg: Option<SvgOptions>,
+    /// Vectorize in colour: regions of at most this many flat colours (1 to 256; see
+    /// [`colour_regions`](crate::colour_regions)), one path per colour, instead of one
+    /// thresholded mask. `None` (the default): binary. Not for a mask input.
+    pub colors: Option<u16>,
+    /// How the colour regions are drawn. Default [`Layout::Stack`].
+    pub layout: Layout,
+    /// Binary, with the alpha channel as the mask (alpha at least
+    /// [`OPAQUE_ALPHA`](crate::OPAQUE_ALPHA)) instead of thresholded grey levels: for
+    /// one-colour icons on transparency, whatever their colour. Not with `colors`.
+    pub alpha: bool,
     /// Render the SVG back with resvg and compare it with the mask.
     pub fidelity: bool,
     /// Write the decomposition's JSON text.
@@ -105,6 +136,9 @@ impl Default for Options {
             turdsize: 0,
             compat: Compat::Default,
             svg: Some(SvgOptions::default()),
+            colors: None,
+            layout: Layout::Stack,
+            alpha: false,
             fidelity: false,
             json: false,
             picture: None,
@@ -128,6 +162,9 @@ impl fmt::Debug for Options {
             .field("turdsize", &self.turdsize)
             .field("compat", &self.compat)
             .field("svg", &self.svg)
+            .field("colors", &self.colors)
+            .field("layout", &self.layout)
+            .field("alpha", &self.alpha)
             .field("fidelity", &self.fidelity)
             .field("json", &self.json)
             .field("picture", &self.picture)
@@ -194,6 +231,24 @@ impl Options {
     /// The SVG's coordinate grid, 1/2^`grid` px (drawing an SVG).
     pub fn grid(mut self, grid: u8) -> Options {
         self.svg.get_or_insert_with(SvgOptions::default).grid = grid;
+        self
+    }
+
+    /// Vectorize in colour with at most `colors` colours (see [`Options::colors`]).
+    pub fn colors(mut self, colors: u16) -> Options {
+        self.colors = Some(colors);
+        self
+    }
+
+    /// How colour regions are drawn.
+    pub fn layout(mut self, layout: Layout) -> Options {
+        self.layout = layout;
+        self
+    }
+
+    /// The alpha channel as the mask (see [`Options::alpha`]).
+    pub fn alpha(mut self, alpha: bool) -> Options {
+        self.alpha = alpha;
         self
     }
 
