@@ -1,0 +1,316 @@
+//! `layertrace._layertrace`: the native half of the Python package (PyO3).
+//!
+//! One function, [`vectorize`], takes an encoded image (bytes), a path, raw pixels (grey,
+//! RGB or RGBA, row by row) or a mask (one byte per pixel, non-zero = foreground) and
+//! returns a dict of everything layertrace makes; the Python module `layertrace` wraps it
+//! (NumPy arrays and PIL images are turned into raw pixels there). The work runs with the
+//! GIL released. Every error is a `layertrace.Error` (a `ValueError`) carrying the CLI's
+//! one-line message.
+
+use std::path::PathBuf;
+
+use layertrace::{
+    diff_image, png_bytes, threshold_image, vectorize as run, Compat, Cover, Error as LtError,
+    LoadOptions, Mask, Model, Options, Threshold,
+};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+
+create_exception!(
+    _layertrace,
+    Error,
+    PyValueError,
+    "Bad input or options: the message is the layertrace command line's."
+);
+
+/// What was given, borrowed for the time of the work (the GIL released).
+enum Input<'a> {
+    Bytes(&'a [u8]),
+    Path(PathBuf),
+    /// Raw pixels: width, height, channels (1 grey, 3 RGB, 4 RGBA).
+    Pixels(&'a [u8], u32, u32, u8),
+    /// One byte per pixel, non-zero = foreground.
+    Mask(&'a [u8], u32, u32),
+}
+
+/// Everything the work made, before it becomes a dict.
+struct Made {
+    svg: String,
+    json: String,
+    width: u32,
+    height: u32,
+    threshold: u8,
+    contours: usize,
+    pieces: usize,
+    commands: usize,
+    fidelity: Option<(u64, u64, u64, f64)>,
+    decomposition_png: Vec<u8>,
+    diff_png: Option<Vec<u8>>,
+}
+
+fn model(s: &str) -> Result<Model, String> {
+    const IMAGE_MODELS: &str = "line, circle, conic or poly:D (D = 1..=6)";
+    match s.parse::<Model>() {
+        Ok(Model::Quadric3 | Model::Poly3(_)) => Err(format!(
+            "'{s}' is a model of 3-D point sets (layertrace recognize); images take {IMAGE_MODELS}"
+        )),
+        Ok(m) => Ok(m),
+        Err(_) => Err(format!("unknown model '{s}': expected {IMAGE_MODELS}")),
+    }
+}
+
+/// `N` (0..=255), `otsu`, or `adaptive[:R[:K]]`, as the command line's `--threshold`.
+fn threshold(s: &str) -> Result<Threshold, String> {
+    let s = s.trim();
+    if s.eq_ignore_ascii_case("otsu") {
+        return Ok(Threshold::Otsu);
+    }
+    let mut parts = s.split(':');
+    if parts
+        .next()
+        .is_some_and(|p| p.eq_ignore_ascii_case("adaptive"))
+    {
+        let numbers: Vec<&str> = parts.collect();
+        let number = |i: usize, what: &str, hi: u32, default: u32| match numbers.get(i) {
+            None => Ok(default),
+            Some(p) => match p.trim().parse::<u32>() {
+                Ok(v) if (i as u32..=hi).contains(&v) && (i > 0 || v >= 1) => Ok(v),
+                _ => Err(format!(
+                    "'{s}': {what} must be a whole number from {} to {hi}",
+                    if i == 0 { 1 } else { 0 }
+                )),
+            },
+        };
+        if numbers.len() > 2 {
+            return Err(format!("'{s}' has too many parts: adaptive[:R[:K]]"));
+        }
+        let radius = number(0, "R (the window radius)", 1000, Threshold::ADAPTIVE_RADIUS)?;
+        let k = number(
+            1,
+            "K (Sauvola's k in hundredths)",
+            100,
+            u32::from(Threshold::ADAPTIVE_K_PERCENT),
+        )?;
+        return Ok(Threshold::Adaptive {
+            radius,
+            k_percent: k as u8,
+        });
+    }
+    s.parse::<u8>()
+        .map(Threshold::Fixed)
+        .map_err(|_| format!("'{s}' is neither a number 0..=255 nor 'otsu' nor 'adaptive[:R[:K]]'"))
+}
+
+fn work(input: Input<'_>, options: &Options) -> Result<Made, LtError> {
+    let (out, threshold) = match input {
+        Input::Bytes(bytes) => {
+            let out = run(bytes, options)?;
+            let t = out.threshold;
+            (out, t)
+        }
+        Input::Path(path) => {
+            let out = run(&path, options)?;
+            let t = out.threshold;
+            (out, t)
+        }
+        Input::Pixels(data, width, height, channels) => {
+            let name = PathBuf::from("<array>");
+            check_size(&name, width, height, options)?;
+            let (w, h) = (width, height);
+            let raw = data.to_vec();
+            let bad = || {
+                LtError::Arguments(format!(
+                    "{w}x{h}x{channels} pixels need {} bytes, got {}",
+                    u64::from(w) * u64::from(h) * u64::from(channels),
+                    data.len()
+                ))
+            };
+            let img = match channels {
+                1 => image::GrayImage::from_raw(w, h, raw).map(image::DynamicImage::ImageLuma8),
+                3 => image::RgbImage::from_raw(w, h, raw).map(image::DynamicImage::ImageRgb8),
+                4 => image::RgbaImage::from_raw(w, h, raw).map(image::DynamicImage::ImageRgba8),
+                c => {
+                    return Err(LtError::Arguments(format!(
+                        "an image has 1 (grey), 3 (RGB) or 4 (RGBA) channels, not {c}"
+                    )))
+                }
+            }
+            .ok_or_else(bad)?;
+            let load = LoadOptions {
+                threshold: options.effective_threshold(),
+                invert: options.invert,
+                compat: Compat::Default,
+                max_pixels: options.max_pixels,
+                max_memory: options.max_memory,
+                turdsize: 0, // applied by `run` to the mask
+            };
+            let loaded = threshold_image(&img, &load);
+            (run(&loaded.mask, options)?, loaded.threshold)
+        }
+        Input::Mask(data, width, height) => {
+            let name = PathBuf::from("<mask>");
+            check_size(&name, width, height, options)?;
+            let w = width as usize;
+            if data.len() as u64 != u64::from(width) * u64::from(height) {
+                return Err(LtError::Arguments(format!(
+                    "a {width}x{height} mask needs {} bytes, got {}",
+                    u64::from(width) * u64::from(height),
+                    data.len()
+                )));
+            }
+            let mask = Mask::from_fn(width, height, |x, y| data[y as usize * w + x as usize] != 0);
+            (run(&mask, options)?, 0)
+        }
+    };
+    let picture_error =
+        |e: image::ImageError| LtError::Arguments(format!("cannot encode a picture: {e}"));
+    let diff_png = match &out.fidelity {
+        Some(f) => Some(png_bytes(&diff_image(&out.mask, &f.rendered)).map_err(picture_error)?),
+        None => None,
+    };
+    Ok(Made {
+        svg: out.svg_text().to_string(),
+        json: out.json.clone().unwrap_or_default(),
+        width: out.mask.width(),
+        height: out.mask.height(),
+        threshold,
+        contours: out.decomposition.contours.len(),
+        pieces: out.decomposition.piece_count(),
+        commands: out.svg.as_ref().map_or(0, |s| s.commands.total()),
+        fidelity: out.fidelity.as_ref().map(|f| {
+            (
+                f.report.differing,
+                f.report.missing,
+                f.report.extra,
+                f.report.iou,
+            )
+        }),
+        decomposition_png: out.picture.clone().unwrap_or_default(),
+        diff_png,
+    })
+}
+
+/// Zero-sized and too large arrays are refused as image files are.
+fn check_size(
+    name: &std::path::Path,
+    width: u32,
+    height: u32,
+    options: &Options,
+) -> Result<(), LtError> {
+    if width == 0 || height == 0 {
+        return Err(LtError::Empty {
+            path: name.to_path_buf(),
+            width,
+            height,
+        });
+    }
+    if u64::from(width) * u64::from(height) > options.max_pixels {
+        return Err(LtError::TooLarge {
+            path: name.to_path_buf(),
+            width,
+            height,
+            max_pixels: options.max_pixels,
+        });
+    }
+    Ok(())
+}
+
+/// Vectorizes one image; see `layertrace.vectorize` for the Python-facing documentation.
+///
+/// `kind` is `"bytes"` (`data`: an encoded image file), `"path"` (`path`), `"pixels"`
+/// (`data`: `height` rows of `width` pixels of `channels` bytes) or `"mask"` (`data`: one
+/// byte per pixel, non-zero = foreground). Returns a dict of str, int, float and bytes.
+#[pyfunction]
+#[pyo3(signature = (kind, data=None, path=None, width=0, height=0, channels=0, *,
+                    model="conic", threshold=None, invert=false, turdsize=0, cover="greedy",
+                    fidelity=true, picture_scale=None, max_pixels=400_000_000))]
+#[allow(clippy::too_many_arguments)]
+fn vectorize<'py>(
+    py: Python<'py>,
+    kind: &str,
+    data: Option<&[u8]>,
+    path: Option<PathBuf>,
+    width: u32,
+    height: u32,
+    channels: u8,
+    model: &str,
+    threshold: Option<&str>,
+    invert: bool,
+    turdsize: u64,
+    cover: &str,
+    fidelity: bool,
+    picture_scale: Option<u32>,
+    max_pixels: u64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let bad = |m: String| Error::new_err(m);
+    let mut options = Options::default()
+        .model(self::model(model).map_err(bad)?)
+        .invert(invert)
+        .turdsize(turdsize)
+        .cover(cover.parse::<Cover>().map_err(|e| bad(e.to_string()))?)
+        .fidelity(fidelity)
+        .json(true)
+        .picture(picture_scale)
+        .max_pixels(max_pixels.max(1));
+    if let Some(t) = threshold {
+        options = options.threshold(self::threshold(t).map_err(bad)?);
+    }
+    if let Some(scale) = picture_scale {
+        if !(1..=64).contains(&scale) {
+            return Err(bad(format!("picture_scale {scale} is not from 1 to 64")));
+        }
+    }
+    let need = || data.ok_or_else(|| bad(format!("kind '{kind}' needs data")));
+    let input = match kind {
+        "bytes" => Input::Bytes(need()?),
+        "path" => Input::Path(path.ok_or_else(|| bad("kind 'path' needs a path".into()))?),
+        "pixels" => Input::Pixels(need()?, width, height, channels),
+        "mask" => Input::Mask(need()?, width, height),
+        other => return Err(bad(format!("unknown input kind '{other}'"))),
+    };
+    let made = py
+        .allow_threads(|| work(input, &options))
+        .map_err(|e| Error::new_err(e.to_string()))?;
+    let d = PyDict::new(py);
+    d.set_item("svg", made.svg)?;
+    d.set_item("json", made.json)?;
+    d.set_item("width", made.width)?;
+    d.set_item("height", made.height)?;
+    d.set_item("threshold", made.threshold)?;
+    d.set_item("contours", made.contours)?;
+    d.set_item("piece_count", made.pieces)?;
+    d.set_item("commands", made.commands)?;
+    match made.fidelity {
+        Some((differing, missing, extra, iou)) => {
+            d.set_item("fidelity", differing)?;
+            d.set_item("missing", missing)?;
+            d.set_item("extra", extra)?;
+            d.set_item("iou", iou)?;
+        }
+        None => {
+            for key in ["fidelity", "missing", "extra", "iou"] {
+                d.set_item(key, py.None())?;
+            }
+        }
+    }
+    d.set_item(
+        "decomposition_png",
+        PyBytes::new(py, &made.decomposition_png),
+    )?;
+    match made.diff_png {
+        Some(png) => d.set_item("diff_png", PyBytes::new(py, &png))?,
+        None => d.set_item("diff_png", py.None())?,
+    }
+    Ok(d)
+}
+
+/// The native module.
+#[pymodule]
+fn _layertrace(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(vectorize, m)?)?;
+    m.add("Error", m.py().get_type::<Error>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
