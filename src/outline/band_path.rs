@@ -51,6 +51,12 @@ const POLYGON_SLACK: f64 = 0.2;
 /// replaces, and they from it (see [`POLYGON_SLACK`]).
 const CURVE_SLACK: f64 = 0.15;
 
+/// The finest grid of smooth outlines (1/4 px): the curves only have to stay within the
+/// band, and a coarser grid writes fewer digits. 27 shared samples at ν = 1, against the
+/// exact drawings' 1/16 px: 127 351 → 91 818 bytes, commands 5 517 → 5 588, differing pixels
+/// 22 150 → 22 921 (1/8 px: 109 772 bytes, 5 553 commands, 21 941 px).
+const SMOOTH_GRID: u8 = 2;
+
 /// potrace's `alphamax`: vertices with a larger α are corners.
 const ALPHA_MAX: f64 = 1.0;
 
@@ -137,7 +143,7 @@ pub(crate) fn band_contour_path(
         return None;
     }
     let nu = band.nu();
-    let grid = opts.grid.min(super::MAX_GRID);
+    let grid = opts.grid.min(SMOOTH_GRID);
     let crack_path = || {
         let mut b = Builder::new(0);
         b.polyline(&corners);
@@ -163,7 +169,15 @@ pub(crate) fn band_contour_path(
     let mut no_merge = vec![false; m];
     let mut no_adjust = vec![false; m];
     for _ in 0..MAX_ROUNDS {
-        let vs = vertices(&verts, &corners, &cells, &forced_corner, &no_adjust, nu);
+        let vs = vertices(
+            &verts,
+            &corners,
+            &cells,
+            &forced_corner,
+            &no_adjust,
+            nu,
+            grid,
+        );
         let (start, commands, items) = draw(&vs, &corners, &cells, &no_merge, nu, grid);
         let wrong: Vec<_> = misplaced_pixels(&reference, start, &commands, opts.clipping)
             .into_iter()
@@ -239,7 +253,17 @@ impl FitLine {
 /// the middle of the border's steps rather than along their outer corners; each edge whose
 /// region against the crack path would then hold a constraint pixel keeps its vertices
 /// where they were.
-fn adjusted(verts: &[usize], corners: &[Point], cells: &Cells, no_adjust: &[bool]) -> Vec<Point> {
+///
+/// Vertices stay on the grid of `2^(1 − grid)` px, so that the midpoints of the edges, where
+/// the curves start and end, are on the path's grid of `2^−grid` px.
+fn adjusted(
+    verts: &[usize],
+    corners: &[Point],
+    cells: &Cells,
+    no_adjust: &[bool],
+    grid: u8,
+) -> Vec<Point> {
+    let steps = 1i32 << grid.saturating_sub(1).min(4);
     let m = corners.len();
     let p = verts.len();
     let span = |k: usize| {
@@ -264,9 +288,10 @@ fn adjusted(verts: &[usize], corners: &[Point], cells: &Cells, no_adjust: &[bool
         let o = pos[k];
         let q = |x: Point| l0.dist2(x) + l1.dist2(x);
         let mut best = (q(o), o);
-        for i in 0..=8 {
-            for j in 0..=8 {
-                let c = o + Vec2::new(i as f64 / 8.0 - 0.5, j as f64 / 8.0 - 0.5);
+        for i in 0..=steps {
+            for j in 0..=steps {
+                let step = |k: i32| f64::from(k) / f64::from(steps) - 0.5;
+                let c = o + Vec2::new(step(i), step(j));
                 let v = q(c);
                 if v < best.0 - 1e-12 {
                     best = (v, c);
@@ -311,10 +336,11 @@ fn vertices(
     forced_corner: &[bool],
     no_adjust: &[bool],
     nu: f64,
+    grid: u8,
 ) -> Vec<Vertex> {
     let m = corners.len();
     let p = verts.len();
-    let pos = adjusted(verts, corners, cells, no_adjust);
+    let pos = adjusted(verts, corners, cells, no_adjust, grid);
     let at = |k: usize| pos[k % p];
     let mut out = Vec::with_capacity(p);
     for k in 0..p {
