@@ -410,14 +410,13 @@ pub(crate) fn path_data(
                     // commands, unless the exact one has a pixel staircase.
                     Some(band) => {
                         let exact = exact();
-                        match band_contour_path(contour, band, outline) {
-                            Some(smooth)
-                                if smooth.counts().total() <= exact.counts().total()
-                                    || has_staircase(exact.start, &exact.commands) =>
-                            {
-                                smooth
-                            }
-                            _ => exact,
+                        let smooth = band_contour_path(contour, band, outline);
+                        if smooth.counts().total() <= exact.counts().total()
+                            || has_staircase(exact.start, &exact.commands)
+                        {
+                            smooth
+                        } else {
+                            exact
                         }
                     }
                     None => exact(),

@@ -22,6 +22,8 @@ pub(crate) struct Cells {
     /// The sign of `cross(crack edge, centre − edge start)` for pixels inside the crack
     /// polygon near an edge (−1 when the inside is on the left on screen).
     inside_sign: i8,
+    /// The image: `[0, width] × [0, height]`.
+    image: kurbo::Rect,
 }
 
 impl Cells {
@@ -77,6 +79,7 @@ impl Cells {
             h,
             label,
             inside_sign,
+            image: kurbo::Rect::new(0.0, 0.0, f64::from(band.width()), f64::from(band.height())),
         }
     }
 
@@ -96,6 +99,14 @@ impl Cells {
             OUTSIDE => Some(-self.inside_sign),
             _ => None,
         }
+    }
+
+    /// True when `p` lies in the image (its border included). A path that stays in the image
+    /// is not cut at the image border by the renderer's edge clipper, which would move the
+    /// chords of its curves there.
+    pub(crate) fn in_image(&self, p: Point) -> bool {
+        let r = self.image;
+        p.x >= r.x0 && p.x <= r.x1 && p.y >= r.y0 && p.y <= r.y1
     }
 
     /// True when the closed polyline `poly` winds round the centre of no constraint pixel.

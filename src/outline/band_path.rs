@@ -116,15 +116,14 @@ fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
 }
 
 /// The smooth outline of one contour (see the module documentation).
-///
-/// Returns `None` for a contour touching the image border: a path that leaves the image is
-/// cut at its border by the renderer's edge clipper, which moves the chords of its curves
-/// in ways the render check does not see (such contours are drawn exactly instead).
+/// The path stays in the image: a path that leaves it is cut at the image border by the
+/// renderer's edge clipper, which moves the chords of its curves in ways the render check
+/// does not see.
 pub(crate) fn band_contour_path(
     contour: &Contour,
     band: &Band,
     opts: &OutlineOptions,
-) -> Option<ContourPath> {
+) -> ContourPath {
     let points = &contour.points;
     let n = points.len();
     let mut corners = if n == 0 {
@@ -134,13 +133,6 @@ pub(crate) fn band_contour_path(
     };
     if corners.len() > 1 && corners.first() == corners.last() {
         corners.pop();
-    }
-    let (w, h) = (f64::from(band.width()), f64::from(band.height()));
-    if corners
-        .iter()
-        .any(|p| p.x <= 0.0 || p.y <= 0.0 || p.x >= w || p.y >= h)
-    {
-        return None;
     }
     let nu = band.nu();
     let grid = opts.grid.min(SMOOTH_GRID);
@@ -156,7 +148,7 @@ pub(crate) fn band_contour_path(
     };
     let m = corners.len();
     if m < 4 {
-        return Some(crack_path());
+        return crack_path();
     }
     let reference = {
         let c = crack_path();
@@ -189,7 +181,7 @@ pub(crate) fn band_contour_path(
                 commands,
                 ..ContourPath::default()
             };
-            return Some(out);
+            return out;
         }
         if !repair(
             &wrong,
@@ -205,7 +197,7 @@ pub(crate) fn band_contour_path(
     }
     let mut out = crack_path();
     out.fallbacks.invalid_pieces += 1;
-    Some(out)
+    out
 }
 
 /// The line fitted to points by least squares: a point on it and its unit direction.
@@ -292,6 +284,9 @@ fn adjusted(
             for j in 0..=steps {
                 let step = |k: i32| f64::from(k) / f64::from(steps) - 0.5;
                 let c = o + Vec2::new(step(i), step(j));
+                if !cells.in_image(c) {
+                    continue;
+                }
                 let v = q(c);
                 if v < best.0 - 1e-12 {
                     best = (v, c);
@@ -661,6 +656,10 @@ fn merged(
     }
     let (a, b) = (a.clamp(0.3 * ta, ta), b.clamp(0.3 * tb, tb));
     let c = CubicBez::new(p0, p0 + u0 * a, p3 - u1 * b, p3);
+    // Inside the image, so not cut at its border by the renderer.
+    if !(cells.in_image(c.p1) && cells.in_image(c.p2)) {
+        return None;
+    }
     let mut new = Vec::with_capacity(64);
     flatten(&c, &mut new);
     let crack: Vec<Point> = (c0..=c1).map(|i| corners[i % m]).collect();
