@@ -157,7 +157,7 @@ pub struct Args {
 
     /// Colour: the image becomes regions of at most N flat colours (1 to 256), one path per
     /// colour. An image with at most N colours keeps them exactly (pixel art, icons, flags,
-    /// charts); any other is quantized (NeuQuant and k-means) and its anti-aliasing
+    /// charts); any other is quantized (NeuQuant, Ward's merging, k-means) and its anti-aliasing
     /// fringes (1-2 px of in-between colour along an edge between two regions) join the
     /// nearer region. Pixels with alpha below 128 belong to no region. --report and --diff
     /// compare with these regions.

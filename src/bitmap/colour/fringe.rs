@@ -4,10 +4,13 @@
 //! orange along it; quantized, they become a sliver region of their own (or join a real
 //! orange region elsewhere in the image). A pixel is a fringe pixel when, along one of the
 //! four axes (horizontal, vertical, the two diagonals, in that order), the run of its
-//! colour through it is 1 or 2 pixels long and ends on both sides on two *different* opaque
-//! colours `a` and `b` with its own colour `c` between them: `c` projects onto the segment
-//! `ab` of RGB space strictly inside it, at most a quarter of `|ab|` away from it. It joins
-//! whichever of `a` and `b` is nearer to `c`. A thin line of a colour not between its two
+//! quantized colour through it is 1 or 2 pixels long and ends on both sides on two
+//! *different* opaque colours `a` and `b` with its own colour `c` between them: `c`
+//! projects onto the segment `ab` of RGB space strictly inside it, at most a quarter of
+//! `|ab|` away from it. It joins whichever of `a` and `b` is nearer to `c`. `c` is the
+//! pixel's colour before quantization: a grey fringe between black and white that
+//! quantization gave to a red region (the nearest palette colour to that grey) still
+//! joins black or white. A thin line of a colour not between its two
 //! sides (a black outline between yellow and white), or between two regions of the same
 //! colour (a grey line on white), is kept.
 //!
@@ -42,9 +45,16 @@ fn between(a: Colour, c: Colour, b: Colour) -> bool {
 }
 
 /// Moves the fringe pixels of `index` (row-major palette indices of a `width` × `height`
-/// image, [`ColourImage::NONE`] for none) into the nearer neighbouring region; returns how
-/// many pixel changes were made.
-pub(super) fn clean(index: &mut [u16], width: u32, height: u32, palette: &[Colour]) -> u64 {
+/// image, [`ColourImage::NONE`] for none; `original` the pixels' colours before
+/// quantization, row-major) into the nearer neighbouring region; returns how many pixel
+/// changes were made.
+pub(super) fn clean(
+    index: &mut [u16],
+    original: &[Colour],
+    width: u32,
+    height: u32,
+    palette: &[Colour],
+) -> u64 {
     let (w, h) = (i64::from(width), i64::from(height));
     let at = |index: &[u16], x: i64, y: i64| -> Option<u16> {
         if x < 0 || y < 0 || x >= w || y >= h {
@@ -84,7 +94,7 @@ pub(super) fn clean(index: &mut [u16], width: u32, height: u32, palette: &[Colou
                     }
                     let (ca, cc, cb) = (
                         palette[usize::from(a)],
-                        palette[usize::from(c)],
+                        original[(y * w + x) as usize],
                         palette[usize::from(b)],
                     );
                     if between(ca, cc, cb) {
@@ -131,7 +141,11 @@ mod tests {
     fn run(palette: &[Colour], row: &[u16]) -> (Vec<u16>, u64) {
         // Three identical rows: the vertical runs are long, only the horizontal one counts.
         let mut index: Vec<u16> = row.iter().chain(row).chain(row).copied().collect();
-        let n = clean(&mut index, row.len() as u32, 3, palette);
+        let original: Vec<Colour> = index
+            .iter()
+            .map(|&k| palette.get(usize::from(k)).copied().unwrap_or(BLACK))
+            .collect();
+        let n = clean(&mut index, &original, row.len() as u32, 3, palette);
         (index[row.len()..2 * row.len()].to_vec(), n)
     }
 
@@ -159,6 +173,17 @@ mod tests {
         assert_eq!((row, n), (vec![1, 2, 2], 0));
         let (row, n) = run(&p, &[0, 1, ColourImage::NONE]);
         assert_eq!((row, n), (vec![0, 1, ColourImage::NONE], 0));
+    }
+
+    #[test]
+    fn the_colour_before_quantization_decides() {
+        // A grey fringe pixel between black and white, quantized to red: joins black.
+        let white = Colour::new(255, 255, 255);
+        let p = [Colour::new(0, 0, 0), Colour::new(212, 0, 0), white];
+        let mut index = vec![0, 0, 1, 2, 2];
+        let original = [p[0], p[0], Colour::new(100, 100, 100), white, white];
+        assert_eq!(clean(&mut index, &original, 5, 1, &p), 1);
+        assert_eq!(index, [0, 0, 0, 2, 2]);
     }
 
     #[test]

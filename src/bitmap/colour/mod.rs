@@ -242,7 +242,11 @@ pub fn colour_regions(rgba: &RgbaImage, max_colours: u16) -> Regions {
     let fringe = if exact {
         0
     } else {
-        fringe::clean(&mut index, width, height, &colours)
+        let original: Vec<Colour> = rgba
+            .pixels()
+            .map(|p| Colour::new(p[0], p[1], p[2]))
+            .collect();
+        fringe::clean(&mut index, &original, width, height, &colours)
     };
     let image = compact(width, height, index, colours);
     Regions {
