@@ -159,3 +159,27 @@ proptest! {
         // and random bitmaps are full of one-pixel features there.
     }
 }
+
+#[test]
+fn colour_layers_keep_the_guarantee_without_seams() {
+    for (path, n) in [
+        ("samples/colour/colour_logo_aa.png", 4),
+        ("samples/colour/colour_chart_aa.png", 6),
+        ("samples/colour/colour_photo_like.png", 8),
+    ] {
+        let options = Options::default().colors(n).fidelity(true);
+        let exact = vectorize(&repo(path), &options).unwrap();
+        let v = vectorize(&repo(path), &options.smooth(1.0)).unwrap();
+        let f = v.colour.as_ref().unwrap().fidelity.as_ref().unwrap();
+        let b = f.band.expect("a band check in smooth mode");
+        assert_eq!(b.differing, f.differing, "{path}");
+        assert_eq!(b.beyond, 0, "{path}: largest distance {}", b.max_distance);
+        assert_eq!(f.seams, 0, "{path}");
+        let (e, s) = (
+            exact.svg.unwrap().commands.total(),
+            v.svg.as_ref().unwrap().commands.total(),
+        );
+        assert!(s < e, "{path}: {s} smooth commands, {e} exact");
+        assert_eq!(staircases(v.svg_text()).unwrap().runs, 0, "{path}");
+    }
+}

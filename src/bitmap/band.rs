@@ -28,6 +28,8 @@ pub struct Band {
     nu: f64,
     /// Row-major, one byte per pixel: 1 within ν of the border.
     near: Vec<u8>,
+    /// Where an outline drawn in this band must stay: `[x0, x1] × [y0, y1]`.
+    bounds: [f64; 4],
 }
 
 /// The offsets `(dx, dy) ≠ (0, 0)` whose pixel square is within `nu` of a pixel centre,
@@ -90,7 +92,21 @@ impl Band {
             height: h,
             nu,
             near,
+            bounds: [0.0, 0.0, f64::from(w), f64::from(h)],
         })
+    }
+
+    /// The band with the outline kept in the rectangle `[x0, x1] × [y0, y1]` instead of the
+    /// whole image (a padded image's own part, say: the renderer cuts paths at the border of
+    /// what it draws).
+    pub fn within(mut self, x0: f64, y0: f64, x1: f64, y1: f64) -> Band {
+        self.bounds = [x0, y0, x1, y1];
+        self
+    }
+
+    /// Where an outline drawn in this band must stay: `[x0, y0, x1, y1]`.
+    pub fn bounds(&self) -> [f64; 4] {
+        self.bounds
     }
 
     /// Width of the image in pixels.

@@ -271,6 +271,9 @@ fn report(v: &Vectorized) -> Result<String, Error> {
             .map(|d| format!("{} {}/{}", d.colour, d.differing, d.pixels))
             .collect();
         text += &format!("per colour (differing/pixels): {}\n", per.join(", "));
+        if let Some(b) = f.band {
+            text += &band_line(&b);
+        }
     }
     let (Some(out), Some(f)) = (&v.svg, &v.fidelity) else {
         if v.colour.is_some() {
@@ -291,13 +294,7 @@ fn report(v: &Vectorized) -> Result<String, Error> {
         r.differing, r.missing, r.extra, pct, r.foreground, r.iou
     );
     if let Some(b) = f.band {
-        text += &format!(
-            "smooth: {} differing pixels within {} px of the border (largest distance {:.3} px), {} beyond\n",
-            b.differing - b.beyond,
-            b.nu,
-            b.max_distance,
-            b.beyond
-        );
+        text += &band_line(&b);
     }
     text += &svg_lines(out)?;
     Ok(text)
@@ -332,6 +329,17 @@ fn svg_lines(out: &layertrace::SvgOutput) -> Result<String, Error> {
         s.runs, s.segments, s.lines
     );
     Ok(text)
+}
+
+/// The `--report` line of smooth mode: where the differing pixels are.
+fn band_line(b: &layertrace::BandCheck) -> String {
+    format!(
+        "smooth: {} differing pixels within {} px of the border (largest distance {:.3} px), {} beyond\n",
+        b.differing - b.beyond,
+        b.nu,
+        b.max_distance,
+        b.beyond
+    )
 }
 
 /// `n` and the noun, singular or plural.

@@ -10,6 +10,7 @@
 
 use std::fmt::Write as _;
 
+use crate::bitmap::Band;
 use crate::decompose::Decomposition;
 use crate::export::svg::{
     empty_output, outline_options, path_data, xml_escape, SvgOptions, SvgOutput,
@@ -22,6 +23,8 @@ pub struct SvgLayer<'a> {
     pub fill: &'a str,
     /// The borders of the layer's mask, decomposed.
     pub decomposition: &'a Decomposition,
+    /// With smooth outlines: the band of the layer's (padded) mask.
+    pub band: Option<&'a Band>,
 }
 
 /// The SVG document of `layers` drawn in order over a `width` × `height` image, with the
@@ -45,7 +48,7 @@ pub fn layers_document(
     );
     let mut drawn = Vec::with_capacity(layers.len());
     for layer in layers {
-        let paths = path_data(layer.decomposition, &outline, None, margin, &|_| {});
+        let paths = path_data(layer.decomposition, &outline, layer.band, margin, &|_| {});
         if !paths.data.is_empty() {
             let _ = writeln!(
                 svg,

@@ -48,11 +48,22 @@ pub struct ColourFidelity {
     pub seams: u64,
     /// The crispEdges rendering, straight (not premultiplied) RGBA.
     pub rendered: image::RgbaImage,
+    /// With smooth outlines: how far the differing pixels are from a border between two
+    /// colours (or a colour and no region).
+    pub band: Option<super::BandCheck>,
 }
 
 /// Renders `svg` at the size of `expected`, crisp and anti-aliased, and compares (see the
 /// module documentation).
-pub fn colour_fidelity(svg: &str, expected: &ColourImage) -> Result<ColourFidelity, Error> {
+///
+/// With `band_nu` = Some(ν) (smooth outlines), also checks the guarantee of smooth outlines: every differing
+/// pixel is within ν of a pixel of another colour or of no region (the distance from its
+/// centre to that pixel's square).
+pub fn colour_fidelity(
+    svg: &str,
+    expected: &ColourImage,
+    band_nu: Option<f64>,
+) -> Result<ColourFidelity, Error> {
     let (w, h) = (expected.width(), expected.height());
     let crisp = super::render_with(svg, w, h, usvg::ShapeRendering::CrispEdges)?;
     let smooth = super::render_with(svg, w, h, usvg::ShapeRendering::GeometricPrecision)?;
@@ -67,6 +78,20 @@ pub fn colour_fidelity(svg: &str, expected: &ColourImage) -> Result<ColourFideli
         .collect();
     let mut extra = 0u64;
     let mut seams = 0u64;
+    let mut band = band_nu.map(|nu| super::BandCheck {
+        nu,
+        differing: 0,
+        beyond: 0,
+        max_distance: 0.0,
+    });
+    let mut off = |xi: i64, yi: i64| {
+        if let Some(b) = &mut band {
+            let d = colour_border_distance(expected, xi, yi, b.nu + 4.0).unwrap_or(f64::INFINITY);
+            b.differing += 1;
+            b.max_distance = b.max_distance.max(d);
+            b.beyond += u64::from(d > b.nu);
+        }
+    };
     let mut rendered = image::RgbaImage::new(w, h);
     let crisp_px = crisp.pixels();
     let smooth_px = smooth.pixels();
@@ -83,6 +108,7 @@ pub fn colour_fidelity(svg: &str, expected: &ColourImage) -> Result<ColourFideli
                     d.pixels += 1;
                     if c.alpha() != 255 || Colour::new(c.red(), c.green(), c.blue()) != want {
                         d.differing += 1;
+                        off(xi, yi);
                     }
                     let inside = (-2..=2).all(|dy| {
                         (-2..=2).all(|dx| {
@@ -101,6 +127,7 @@ pub fn colour_fidelity(svg: &str, expected: &ColourImage) -> Result<ColourFideli
                 None => {
                     if c.alpha() > 0 {
                         extra += 1;
+                        off(xi, yi);
                     }
                 }
             }
@@ -115,7 +142,34 @@ pub fn colour_fidelity(svg: &str, expected: &ColourImage) -> Result<ColourFideli
         pixels,
         seams,
         rendered,
+        band,
     })
+}
+
+/// Distance from the centre of pixel `(x, y)` to the square of the nearest pixel of another
+/// colour or of no region (see [`crate::bitmap::border_distance`]), searched up to `limit`.
+fn colour_border_distance(expected: &ColourImage, x: i64, y: i64, limit: f64) -> Option<f64> {
+    let own = expected.get(x, y);
+    let r = (limit + 0.5).ceil() as i64;
+    let (w, h) = (i64::from(expected.width()), i64::from(expected.height()));
+    let mut best: Option<f64> = None;
+    for dy in -r..=r {
+        for dx in -r..=r {
+            let (u, v) = (x + dx, y + dy);
+            if (dx, dy) == (0, 0) || u < 0 || v < 0 || u >= w || v >= h {
+                continue;
+            }
+            if expected.get(u, v) != own {
+                let d = (dx.abs() as f64 - 0.5)
+                    .max(0.0)
+                    .hypot((dy.abs() as f64 - 0.5).max(0.0));
+                if d <= limit && best.is_none_or(|b| d < b) {
+                    best = Some(d);
+                }
+            }
+        }
+    }
+    best
 }
 
 /// A picture of the comparison: the regions in their colours, faded halfway to white,
@@ -168,7 +222,7 @@ mod tests {
         let side = format!(
             "{HEAD}<path fill=\"#ff0000\" d=\"M0 0H2.4L1.6 4H0Z\"/><path fill=\"#0000ff\" d=\"M2.4 0H4V4H1.6Z\"/></svg>"
         );
-        let f = colour_fidelity(&side, &img).unwrap();
+        let f = colour_fidelity(&side, &img, None).unwrap();
         assert_eq!(f.differing, 0, "{f:?}");
         assert_eq!(f.pixels, 16);
         assert!(f.seams > 0, "{f:?}");
@@ -176,13 +230,13 @@ mod tests {
         let stacked = format!(
             "{HEAD}<path fill=\"#ff0000\" d=\"M0 0H4V4H0Z\"/><path fill=\"#0000ff\" d=\"M2.4 0H4V4H1.6Z\"/></svg>"
         );
-        let f = colour_fidelity(&stacked, &img).unwrap();
+        let f = colour_fidelity(&stacked, &img, None).unwrap();
         assert_eq!((f.differing, f.seams), (0, 0), "{f:?}");
         // A wrong colour, and paint where no region is.
         let wrong = format!(
             "{HEAD}<path fill=\"#ff0000\" d=\"M0 0H5V4H0Z\"/><path fill=\"#0000fe\" d=\"M2 0H4V4H2Z\"/></svg>"
         );
-        let f = colour_fidelity(&wrong, &img).unwrap();
+        let f = colour_fidelity(&wrong, &img, None).unwrap();
         assert_eq!((f.colours[0].differing, f.colours[1].differing), (0, 8));
         assert_eq!((f.extra, f.differing), (4, 12));
         let d = colour_diff_image(&img, &f.rendered);

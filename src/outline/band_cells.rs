@@ -79,7 +79,10 @@ impl Cells {
             h,
             label,
             inside_sign,
-            image: kurbo::Rect::new(0.0, 0.0, f64::from(band.width()), f64::from(band.height())),
+            image: {
+                let [x0, y0, x1, y1] = band.bounds();
+                kurbo::Rect::new(x0, y0, x1, y1)
+            },
         }
     }
 

@@ -34,7 +34,7 @@
 use std::path::Path;
 
 use super::options::Options;
-use crate::bitmap::{colour_regions, decode_rgba, load_rgba, Colour, Mask, Regions};
+use crate::bitmap::{colour_regions, decode_rgba, load_rgba, Band, Colour, Mask, Regions};
 use crate::contour::{trace, Convention};
 use crate::decompose::{decompose_reporting, Decomposition, OutlierRule};
 use crate::error::Error;
@@ -129,13 +129,26 @@ pub(super) fn run(
     }
     let (w, h) = (image.width(), image.height());
     let fills: Vec<String> = layers.iter().map(|l| l.colour.to_string()).collect();
+    // Smooth outlines: each layer's band, its outline kept in the image's part of the
+    // padded mask (a path leaving the image is cut by the renderer).
+    let m = MARGIN as f64;
+    let bands: Vec<Option<Band>> = layers
+        .iter()
+        .map(|l| {
+            let nu = options.smooth?;
+            let band = Band::new(&pad(&l.mask), nu)?;
+            Some(band.within(m, m, m + f64::from(w), m + f64::from(h)))
+        })
+        .collect();
     let svg = options.svg.as_ref().map(|o| {
         let svg_layers: Vec<SvgLayer<'_>> = layers
             .iter()
             .zip(&fills)
-            .map(|(l, fill)| SvgLayer {
+            .zip(&bands)
+            .map(|((l, fill), band)| SvgLayer {
                 fill,
                 decomposition: &l.decomposition,
+                band: band.as_ref(),
             })
             .collect();
         layers_document(&svg_layers, w, h, MARGIN as u32, o)
@@ -161,7 +174,7 @@ pub(super) fn run(
         )
     });
     let fidelity = match (&svg, options.fidelity) {
-        (Some(svg), true) => Some(colour_fidelity(&svg.svg, image)?),
+        (Some(svg), true) => Some(colour_fidelity(&svg.svg, image, options.smooth)?),
         _ => None,
     };
     let mut merged = Decomposition {

@@ -166,11 +166,6 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
         }
     }
     if let Some(colors) = options.colors {
-        if options.smooth.is_some() {
-            return Err(Error::Arguments(
-                "--smooth with --colors is not built yet: smooth each colour's mask instead".into(),
-            ));
-        }
         if options.alpha {
             return Err(Error::Arguments(
                 "--alpha is for one-colour icons; --colors already keeps transparent pixels out"
