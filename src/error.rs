@@ -107,6 +107,15 @@ pub enum Error {
         /// The file (`<stdin>` for standard input).
         path: PathBuf,
     },
+    /// A binary run found no foreground in an image that has transparency: what is drawn is
+    /// most likely in the alpha channel (a light logo on transparency).
+    #[error("{path}: no foreground pixel at threshold {threshold}, but the image has transparency: try --alpha (its alpha channel as the shape) or --colors N")]
+    NoForeground {
+        /// The file (`<memory>` for in-memory input).
+        path: PathBuf,
+        /// The grey threshold used.
+        threshold: u8,
+    },
     /// The image has zero width or zero height.
     #[error("{path}: image is empty ({width}x{height} pixels)")]
     Empty {

@@ -32,10 +32,13 @@
 //!
 //! [`staircases`] counts pixel staircases in the path data (see its module).
 
-use crate::bitmap::Mask;
+use crate::bitmap::{border_distance, Mask};
 use crate::error::Error;
 
+mod colour;
 mod staircase;
+
+pub use colour::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
 
 pub use staircase::{path_staircases, staircases, StaircaseCount};
 
@@ -54,10 +57,61 @@ pub struct FidelityReport {
     pub iou: f64,
 }
 
+/// Where the differing pixels of a smooth outline lie (see [`band_check`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BandCheck {
+    /// The ν checked against.
+    pub nu: f64,
+    /// Differing pixels.
+    pub differing: u64,
+    /// Differing pixels farther than ν from the border (0 when the guarantee holds).
+    pub beyond: u64,
+    /// Largest distance to the border of a differing pixel (0 when none differs).
+    pub max_distance: f64,
+}
+
+/// Checks the guarantee of a smooth outline: every pixel where `rendered` differs from
+/// `expected` lies within `nu` of `expected`'s border (the distance from its centre to the
+/// nearest pixel square of the other colour, see [`crate::bitmap::Band`]).
+pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
+    let mut out = BandCheck {
+        nu,
+        differing: 0,
+        beyond: 0,
+        max_distance: 0.0,
+    };
+    let limit = nu.max(0.0) + 4.0;
+    for y in 0..i64::from(expected.height()) {
+        for x in 0..i64::from(expected.width()) {
+            if expected.get(x, y) == rendered.get(x, y) {
+                continue;
+            }
+            out.differing += 1;
+            let d = border_distance(expected, x, y, limit).unwrap_or(f64::INFINITY);
+            out.max_distance = out.max_distance.max(d);
+            if d > nu {
+                out.beyond += 1;
+            }
+        }
+    }
+    out
+}
+
 /// The pixmap `resvg --shape-rendering crispEdges` paints for `svg`, at `width` × `height`.
 fn render(svg: &str, width: u32, height: u32) -> Result<tiny_skia::Pixmap, Error> {
+    render_with(svg, width, height, usvg::ShapeRendering::CrispEdges)
+}
+
+/// The pixmap resvg paints for `svg` at `width` × `height` with `shape_rendering` as the
+/// default shape rendering.
+fn render_with(
+    svg: &str,
+    width: u32,
+    height: u32,
+    shape_rendering: usvg::ShapeRendering,
+) -> Result<tiny_skia::Pixmap, Error> {
     let options = usvg::Options {
-        shape_rendering: usvg::ShapeRendering::CrispEdges,
+        shape_rendering,
         ..usvg::Options::default()
     };
     let tree = usvg::Tree::from_str(svg, &options).map_err(|source| Error::SvgParse { source })?;

@@ -28,6 +28,12 @@
 //! Point sets given as such, in 2-D or 3-D, go to [`recognize_points`] (`layertrace
 //! recognize` on the command line).
 //!
+//! Colour images ([`Options::colors`], `--colors N`): [`colour_regions`] makes regions of
+//! at most `N` flat colours (the input's own when it has no more), [`stack_order`] orders
+//! them, each colour's layer goes through the stages above, [`layers_document`] draws one
+//! path per colour, [`colour_fidelity`] compares the rendering colour by colour and counts
+//! seams, [`colour_json`] writes every region's borders and equations.
+//!
 //! ```
 //! use layertrace::{decompose, fidelity, svg_document, trace, Convention, Mask, Model,
 //!                  OutlierRule, SvgOptions};
@@ -76,12 +82,17 @@ mod recognize;
 mod vectorize;
 
 pub use vectorize::{
-    vectorize, Fidelity, Options, Progress, ProgressFn, Source, Stage, Vectorized,
+    stack_order, vectorize, ColourLayer, ColourVectorized, Fidelity, Layout, Options, Progress,
+    ProgressFn, Source, Stage, Vectorized,
 };
 
 pub use bitmap::{
-    default_max_memory, load_memory, load_path, parse_memory_size, threshold_image, Cleaned,
-    Compat, LoadOptions, Loaded, Mask, Threshold,
+    alpha_mask, colour_regions, decode_rgba, has_transparency, load_rgba, Colour, ColourImage,
+    Regions, MAX_COLOURS, OPAQUE_ALPHA,
+};
+pub use bitmap::{
+    border_distance, default_max_memory, load_memory, load_path, parse_memory_size,
+    threshold_image, Band, Cleaned, Compat, LoadOptions, Loaded, Mask, Threshold, MAX_BAND,
 };
 pub use contour::{trace, Contour, Convention};
 pub use curve::{
@@ -99,13 +110,15 @@ pub use estimate::{
     SVG_BYTES_PER_CONTOUR, SVG_BYTES_PER_POINT,
 };
 pub use export::format::{document_bytes, Format, PictureFormat};
-pub use export::json::{decomposition_json, JsonHeader};
+pub use export::json::{colour_json, decomposition_json, JsonHeader, JsonRegion};
+pub use export::layers::{layers_document, SvgLayer};
 pub use export::picture::{decomposition_picture, default_scale};
-pub use export::svg::{svg_document, SvgOptions, SvgOutput};
+pub use export::svg::{smooth_svg_document, svg_document, SvgOptions, SvgOutput};
 pub use fidelity::{
-    compare, diff_image, fidelity, path_staircases, rasterize_svg, staircases, FidelityReport,
-    StaircaseCount,
+    band_check, compare, diff_image, fidelity, path_staircases, rasterize_svg, staircases,
+    BandCheck, FidelityReport, StaircaseCount,
 };
+pub use fidelity::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
 pub use level::{
     border_polynomial, boundary_level, curve_kind, level_polynomial, piece_kind, polynomial_of,
 };

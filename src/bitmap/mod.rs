@@ -15,7 +15,9 @@
 //! [`LoadOptions::turdsize`]) follow potrace's companion mkbitmap and its `-t` option.
 
 mod adaptive;
+mod band;
 mod clean;
+pub(crate) mod colour;
 mod grey;
 mod input;
 mod jpeg;
@@ -26,7 +28,12 @@ mod png;
 #[cfg(test)]
 mod tests;
 
+pub use band::{border_distance, Band, MAX_BAND};
 pub use clean::Cleaned;
+pub use colour::{
+    alpha_mask, colour_regions, decode_rgba, has_transparency, load_rgba, Colour, ColourImage,
+    Regions, MAX_COLOURS, OPAQUE_ALPHA,
+};
 pub use grey::Compat;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};

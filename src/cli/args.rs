@@ -14,6 +14,9 @@ Examples:
   layertrace page.jpg -o page.svg --threshold adaptive --turdsize 4 --report
   layertrace samples/ipol/card_suits.png --compat ipol --model conic --decomposition cs.png
   layertrace scans/ logo.png --out-dir svg/ --model circle
+  layertrace icon.png -o icon.svg --colors 16 --report
+  layertrace photo.png -o photo.svg --colors 8 --json photo.json --diff photo-diff.png
+  layertrace white-logo-on-transparency.png -o logo.svg --alpha
 
 The web page (drop an image, see the result): layertrace serve --help
   layertrace serve --port 8080   (then open http://127.0.0.1:8080/)
@@ -73,13 +76,17 @@ pub struct Args {
 
     /// Render the SVG back as `resvg --shape-rendering crispEdges` does and report on
     /// standard error: differing pixels, IoU, path commands by type, SVG size, pixel
-    /// staircases (runs of 4 or more alternating axis-aligned steps of at most 2 px).
+    /// staircases (runs of 4 or more alternating axis-aligned steps of at most 2 px). With
+    /// --colors: differing pixels per colour and in total, and seam pixels (pixels inside
+    /// the coloured area, their 5x5 neighbourhood all in regions, where the anti-aliased
+    /// rendering lets the background show: alpha below 255).
     #[arg(long)]
     pub report: bool,
 
     /// Write the round-trip differences as PNG (FILE.png, or '-' for standard output): the
     /// foreground mask (the input after thresholding) black on white, missing pixels red,
-    /// extra pixels blue.
+    /// extra pixels blue. With --colors: the regions faded, pixels of a wrong colour red,
+    /// painted pixels of no region blue.
     #[arg(long, value_name = "FILE.png")]
     pub diff: Option<PathBuf>,
 
@@ -124,6 +131,15 @@ pub struct Args {
     #[arg(long, value_name = "greedy|optimal", default_value = "greedy")]
     pub cover: Cover,
 
+    /// Smooth curves instead of the exact outline, for scans and design work: the outline
+    /// may pass anywhere within NU pixels of the border (0 < NU <= 16; 1 is a good start).
+    /// Guarantee: every pixel the SVG renders differently (resvg, crispEdges) lies within NU
+    /// of the input's border, measured from its centre to the nearest pixel square of the
+    /// other colour (a pixel beside the border is at 0.5); --report prints the largest such
+    /// distance. Not with --compat ipol.
+    #[arg(long, value_name = "NU")]
+    pub smooth: Option<f64>,
+
     /// Foreground is luma < N (0..=255), 'otsu' for Otsu's threshold, or 'adaptive' for a
     /// local threshold that ignores lighting gradients and shadows (scans, photographs of
     /// pages; Sauvola's rule over a window of radius R pixels, 1 to 1000, default 16, with
@@ -141,6 +157,28 @@ pub struct Args {
     /// Light foreground on a dark background.
     #[arg(long)]
     pub invert: bool,
+
+    /// Colour: the image becomes regions of at most N flat colours (1 to 256), one path per
+    /// colour. An image with at most N colours keeps them exactly (pixel art, icons, flags,
+    /// charts); any other is quantized (NeuQuant and k-means) and its anti-aliasing
+    /// fringes (1-2 px of in-between colour along an edge between two regions) join the
+    /// nearer region. Pixels with alpha below 128 belong to no region. --report and --diff
+    /// compare with these regions.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=256),
+          conflicts_with_all = ["threshold", "invert", "compat", "turdsize", "alpha", "decomposition"])]
+    pub colors: Option<u16>,
+
+    /// How --colors draws the regions: 'stack' (each colour's path also covers the colours
+    /// drawn after it, which paint over it: exact in crispEdges, and no background shows
+    /// between regions when anti-aliased).
+    #[arg(long, value_name = "stack", default_value = "stack", value_parser = ["stack"],
+          requires = "colors")]
+    pub layout: String,
+
+    /// The alpha channel is the shape (alpha at least 128), whatever its colour: for
+    /// one-colour icons on transparency, such as a white logo.
+    #[arg(long, conflicts_with_all = ["threshold", "invert", "compat"])]
+    pub alpha: bool,
 
     /// Follow the conventions of the paper authors' program instead of layertrace's:
     /// alpha-stripped grey, 4-connected objects, crack-following borders, outliers

@@ -4,8 +4,9 @@ use super::args::Args;
 use super::batch;
 use super::progress::Bar;
 use layertrace::{
-    diff_image, document_bytes, png_bytes, staircases, vectorize, Basis, Compat, CurveKind, Error,
-    Format, Options, OutputSet, PictureFormat, Progress, Stage, SvgOptions, Vectorized,
+    colour_diff_image, diff_image, document_bytes, png_bytes, staircases, vectorize, Basis, Compat,
+    CurveKind, Error, Format, Options, OutputSet, PictureFormat, Progress, Stage, SvgOptions,
+    Vectorized,
 };
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -115,6 +116,9 @@ pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPoo
         .fidelity(args.report || outputs.diff.is_some())
         .json(outputs.json.is_some());
     o.threshold = args.threshold;
+    o.smooth = args.smooth;
+    o.colors = args.colors;
+    o.alpha = args.alpha;
     o.svg = (outputs.svg.is_some() || args.report || outputs.diff.is_some()).then(|| SvgOptions {
         fill: args.fill.clone(),
         grid: args.grid,
@@ -189,13 +193,22 @@ pub fn one(
     if let (Some(id), Some(png)) = (picture_out, v.picture.take()) {
         outs.write(id, png)?;
     }
-    if let (Some(id), Some(path), Some(f)) = (diff_out, &outputs.diff, &v.fidelity) {
-        let bytes =
-            png_bytes(&diff_image(&v.mask, &f.rendered)).map_err(|source| Error::Encode {
+    if let (Some(id), Some(path)) = (diff_out, &outputs.diff) {
+        let picture = match (&v.fidelity, &v.colour) {
+            (Some(f), _) => Some(diff_image(&v.mask, &f.rendered)),
+            (None, Some(c)) => c
+                .fidelity
+                .as_ref()
+                .map(|f| colour_diff_image(&c.regions.image, &f.rendered)),
+            _ => None,
+        };
+        if let Some(picture) = picture {
+            let bytes = png_bytes(&picture).map_err(|source| Error::Encode {
                 path: path.clone(),
                 source,
             })?;
-        outs.write(id, bytes)?;
+            outs.write(id, bytes)?;
+        }
     }
     let mut report = if args.report && args.turdsize > 0 {
         format!("cleaning: {}\n", v.cleaned)
@@ -241,8 +254,31 @@ fn naming(flag: &str, e: Error) -> Error {
 
 /// The `--report` lines: fidelity, the SVG's commands, staircases.
 fn report(v: &Vectorized) -> Result<String, Error> {
+    let mut text = String::new();
+    if let Some(f) = v.colour.as_ref().and_then(|c| c.fidelity.as_ref()) {
+        let pct = if f.pixels > 0 {
+            100.0 * f.differing as f64 / f.pixels as f64
+        } else {
+            0.0
+        };
+        text += &format!(
+            "fidelity: {} differing pixels ({:.3}% of {} in regions; {} painted outside them), {} seam pixels (anti-aliased)\n",
+            f.differing, pct, f.pixels, f.extra, f.seams
+        );
+        let per: Vec<String> = f
+            .colours
+            .iter()
+            .map(|d| format!("{} {}/{}", d.colour, d.differing, d.pixels))
+            .collect();
+        text += &format!("per colour (differing/pixels): {}\n", per.join(", "));
+    }
     let (Some(out), Some(f)) = (&v.svg, &v.fidelity) else {
-        return Ok(String::new());
+        if v.colour.is_some() {
+            if let Some(out) = &v.svg {
+                text += &svg_lines(out)?;
+            }
+        }
+        return Ok(text);
     };
     let r = f.report;
     let pct = if r.foreground > 0 {
@@ -250,10 +286,26 @@ fn report(v: &Vectorized) -> Result<String, Error> {
     } else {
         0.0
     };
-    let mut text = format!(
+    text += &format!(
         "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}\n",
         r.differing, r.missing, r.extra, pct, r.foreground, r.iou
     );
+    if let Some(b) = f.band {
+        text += &format!(
+            "smooth: {} differing pixels within {} px of the border (largest distance {:.3} px), {} beyond\n",
+            b.differing - b.beyond,
+            b.nu,
+            b.max_distance,
+            b.beyond
+        );
+    }
+    text += &svg_lines(out)?;
+    Ok(text)
+}
+
+/// The `--report` lines on the SVG: its commands, staircases.
+fn svg_lines(out: &layertrace::SvgOutput) -> Result<String, Error> {
+    let mut text = String::new();
     let c = out.commands;
     let fb = out.fallback_reasons;
     text += &format!(
@@ -315,14 +367,19 @@ pub fn summary(name: &str, v: &Vectorized, options: &Options, start: Instant) ->
         format!(" ({})", kinds.join(", "))
     };
     let holes = d.contours.iter().filter(|c| c.hole).count();
-    let threshold = match options.effective_threshold() {
-        layertrace::Threshold::Otsu => format!("threshold {} (Otsu)", v.threshold),
-        layertrace::Threshold::Adaptive { radius, k_percent } => format!(
-            "threshold adaptive (radius {radius}, k {:.2}, mean {})",
-            f64::from(k_percent) / 100.0,
-            v.threshold
+    let threshold = match (&v.colour, options.alpha) {
+        (Some(c), _) => format!(
+            "{} ({}, layout {})",
+            count(c.regions.image.palette().len(), "colour", "colours"),
+            if c.regions.exact {
+                "the image's own".to_string()
+            } else {
+                format!("quantized, {} fringe pixel changes", c.regions.fringe)
+            },
+            options.layout.name()
         ),
-        _ => format!("threshold {}", v.threshold),
+        (None, true) => "alpha channel".to_string(),
+        (None, false) => threshold_text(v, options),
     };
     format!(
         "{name}: {}x{}, {} ({}), {}{kinds}, model {}, {threshold}{}, {:.1} ms",
@@ -339,6 +396,19 @@ pub fn summary(name: &str, v: &Vectorized, options: &Options, start: Instant) ->
         if options.invert { ", inverted" } else { "" },
         start.elapsed().as_secs_f64() * 1e3
     )
+}
+
+/// How the summary names the threshold.
+fn threshold_text(v: &Vectorized, options: &Options) -> String {
+    match options.effective_threshold() {
+        layertrace::Threshold::Otsu => format!("threshold {} (Otsu)", v.threshold),
+        layertrace::Threshold::Adaptive { radius, k_percent } => format!(
+            "threshold adaptive (radius {radius}, k {:.2}, mean {})",
+            f64::from(k_percent) / 100.0,
+            v.threshold
+        ),
+        _ => format!("threshold {}", v.threshold),
+    }
 }
 
 /// What the summary calls pieces of each kind (singular, plural).

@@ -66,6 +66,17 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
         quote(d.cover.name()),
         names.join(",")
     );
+    write_contours(d, 0, &mut s);
+    s.push_str("\n ]}\n");
+    s
+}
+
+/// Appends the contours of `d`, each with its pieces (the members of `"contours"`, one
+/// contour per line, each line starting with a newline and two spaces), every point and
+/// origin moved by `-margin` in x and y (the equations, taken at the origin, are the same).
+fn write_contours(d: &Decomposition, margin: i64, s: &mut String) {
+    let basis = d.model.basis();
+    let basis_ref: &dyn crate::model::Basis = &basis;
     for (ci, (c, pieces)) in d.contours.iter().zip(&d.pieces).enumerate() {
         if ci > 0 {
             s.push(',');
@@ -75,7 +86,12 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
             if i > 0 {
                 s.push(',');
             }
-            let _ = write!(s, "[{},{}]", p.x, p.y);
+            let _ = write!(
+                s,
+                "[{},{}]",
+                i64::from(p.x) - margin,
+                i64::from(p.y) - margin
+            );
         }
         s.push_str("],\n   \"pieces\": [");
         for (k, p) in pieces.iter().enumerate() {
@@ -106,8 +122,8 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
                 "{{\"first\": {}, \"last\": {}, \"origin\": [{},{}], \"coefficients\": [{}], \"lower\": {}, \"upper\": {}, \"kind\": \"{}\"}}",
                 p.first,
                 p.last,
-                cert.origin.first().copied().unwrap_or(0),
-                cert.origin.get(1).copied().unwrap_or(0),
+                cert.origin.first().copied().unwrap_or(0) - margin,
+                cert.origin.get(1).copied().unwrap_or(0) - margin,
                 coefficients.join(","),
                 cert.lower,
                 cert.upper,
@@ -119,6 +135,71 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
             }
         }
         s.push_str("]}");
+    }
+}
+
+/// One region of a colour image: its colour, its pixel count, and the decomposition of the
+/// borders that draw it (see [`colour_json`]).
+#[derive(Clone, Copy, Debug)]
+pub struct JsonRegion<'a> {
+    /// `#rrggbb`.
+    pub colour: &'a str,
+    /// Pixels of the region.
+    pub pixels: u64,
+    /// The borders drawn for it.
+    pub decomposition: &'a Decomposition,
+    /// The margin of the decomposition's coordinates: its pixel `(x + margin, y + margin)`
+    /// is the image's `(x, y)`. The JSON is written in image coordinates.
+    pub margin: i64,
+}
+
+/// The JSON text of a colour vectorization (`layertrace-colour/1`): the header of
+/// [`decomposition_json`] without `threshold` and `invert`, then `"layout"` and the regions
+/// in drawing order, each with its colour and the contours of its layer, written as in
+/// `layertrace-decomposition/2`:
+///
+/// ```text
+/// {"format": "layertrace-colour/1", "width": W, "height": H, "layout": "stack",
+///  "model": "conic", "cover": "greedy", "basis": [...],
+///  "regions": [
+///   {"colour": "#rrggbb", "pixels": N, "contours": [{"hole": ..., "points": ..., "pieces": ...}]}]}
+/// ```
+///
+/// With the `stack` layout, region `k`'s contours are the borders of its layer: the pixels
+/// of its colour and of every colour drawn after it (its own pixels are the layer minus the
+/// next region's layer).
+pub fn colour_json(
+    regions: &[JsonRegion<'_>],
+    model: crate::model::Model,
+    cover: crate::decompose::Cover,
+    width: u32,
+    height: u32,
+    layout: &str,
+) -> String {
+    let basis = model.basis();
+    let basis_ref: &dyn crate::model::Basis = &basis;
+    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": {},\n \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"regions\": [",
+        quote(layout),
+        quote(&model.name()),
+        quote(cover.name()),
+        names.join(",")
+    );
+    for (k, r) in regions.iter().enumerate() {
+        if k > 0 {
+            s.push(',');
+        }
+        let _ = write!(
+            s,
+            "\n {{\"colour\": {}, \"pixels\": {}, \"contours\": [",
+            quote(r.colour),
+            r.pixels
+        );
+        write_contours(r.decomposition, r.margin, &mut s);
+        s.push_str("\n ]}");
     }
     s.push_str("\n ]}\n");
     s

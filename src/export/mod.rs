@@ -1,10 +1,11 @@
-//! Outputs of a decomposition: JSON equations, the decomposition picture, SVG, and the SVG
-//! as PDF or EPS.
+//! Outputs of a decomposition: JSON equations, the decomposition picture, SVG (one path, or
+//! one per colour), and the SVG as PDF or EPS.
 
 mod drawing;
 mod eps;
 pub mod format;
 pub mod json;
+pub mod layers;
 mod pdf;
 pub mod picture;
 pub mod svg;

@@ -18,11 +18,12 @@
 //! nearby borders crossing near a thin background gap, or a bridge segment folding back)
 //! stay filled instead of cancelling out.
 
+use crate::bitmap::Band;
 use crate::curve::PathCommand;
 use crate::decompose::Decomposition;
 use crate::outline::{
-    contour_path, CommandCounts, ContourPath, EdgeClipping, FallbackCounts, JoinCounts,
-    OutlineOptions, MAX_GRID,
+    band_contour_path, contour_path, has_staircase, CommandCounts, ContourPath, EdgeClipping,
+    FallbackCounts, JoinCounts, OutlineOptions, MAX_GRID,
 };
 use kurbo::Point;
 use rayon::prelude::*;
@@ -155,12 +156,16 @@ fn push_number(v: f64, precision: usize, after_number: bool, s: &mut String) {
 /// Exact: every point is on the 2^-grid grid, so each difference is a dyadic number with at
 /// most `precision` decimals, written exactly, and the sum a renderer forms again (in `f64`
 /// in usvg, in `f32` in Skia: exact below 2^24 grid units) is the point itself.
-fn write_path_data(cp: &ContourPath, precision: usize, s: &mut String) {
+///
+/// Every absolute point (`M`, `A`) is written moved by `-shift` in x and y (an integer
+/// shift keeps the points exact and the relative numbers the same).
+fn write_path_data(cp: &ContourPath, precision: usize, shift: f64, s: &mut String) {
     if cp.commands.is_empty() {
         return;
     }
+    let moved = |p: Point| Point::new(p.x - shift, p.y - shift);
     s.push('M');
-    point(cp.start, precision, s);
+    point(moved(cp.start), precision, s);
     let mut pen = cp.start;
     let mut last = 'M';
     for c in &cp.commands {
@@ -198,7 +203,7 @@ fn write_path_data(cp: &ContourPath, precision: usize, s: &mut String) {
                 s.push(' ');
                 number(a.x_rotation.to_degrees().rem_euclid(360.0), precision, s);
                 let _ = write!(s, " {} {} ", u8::from(a.large_arc), u8::from(a.sweep));
-                point(a.to, precision, s);
+                point(moved(a.to), precision, s);
                 pen = a.to;
                 last = 'A';
                 continue;
@@ -225,7 +230,7 @@ fn drop_closing_line(cp: &mut ContourPath) {
 }
 
 /// Escapes the five XML special characters of an attribute value.
-fn xml_escape(v: &str) -> String {
+pub(crate) fn xml_escape(v: &str) -> String {
     let mut s = String::with_capacity(v.len());
     for ch in v.chars() {
         match ch {
@@ -244,7 +249,37 @@ fn xml_escape(v: &str) -> String {
 /// `fill-rule="nonzero"`, outer borders counter-clockwise, holes clockwise, width, height
 /// and viewBox the image size in pixels.
 pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOptions) -> SvgOutput {
-    svg_document_reporting(d, width, height, opts, &|_| {})
+    svg_document_reporting(d, width, height, opts, None, &|_| {})
+}
+
+/// The smooth SVG document of a decomposition of `mask`: every contour drawn with curves
+/// through the border band of `band` (the pixels within ν of `mask`'s border) instead of
+/// along its pieces, so that every pixel resvg (crispEdges) draws differently from `mask`
+/// is within ν of the border. The pieces are not used (only the contours).
+///
+/// ```
+/// use layertrace::{decompose, fidelity, smooth_svg_document, trace, Band, Convention, Mask,
+///                  Model, OutlierRule, SvgOptions};
+///
+/// let mask = Mask::from_fn(40, 40, |x, y| {
+///     let (dx, dy) = (x as f64 - 19.5, y as f64 - 19.5);
+///     dx * dx + dy * dy <= 15.0 * 15.0
+/// });
+/// let band = Band::new(&mask, 1.0).unwrap();
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let svg = smooth_svg_document(&d, &band, 40, 40, &SvgOptions::default());
+/// let report = fidelity(&svg.svg, &mask).unwrap();
+/// assert!(svg.commands.cubic > 0 && svg.commands.line == 0);
+/// println!("{} px differ, all within 1 px of the border", report.differing);
+/// ```
+pub fn smooth_svg_document(
+    d: &Decomposition,
+    band: &Band,
+    width: u32,
+    height: u32,
+    opts: &SvgOptions,
+) -> SvgOutput {
+    svg_document_reporting(d, width, height, opts, Some(band), &|_| {})
 }
 
 /// [`svg_document`], calling `done` with the number of contours drawn so far after each
@@ -254,13 +289,33 @@ pub(crate) fn svg_document_reporting(
     width: u32,
     height: u32,
     opts: &SvgOptions,
+    band: Option<&Band>,
     done: &(dyn Fn(usize) + Sync),
 ) -> SvgOutput {
-    let basis = d.model.basis();
+    let outline = outline_options(opts);
+    let header = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
+         height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
+    );
+    let paths = path_data(d, &outline, band, 0, done);
+    let mut svg = header;
+    if !paths.data.is_empty() {
+        let _ = write!(
+            svg,
+            "<path fill=\"{}\" fill-rule=\"nonzero\" d=\"",
+            xml_escape(&opts.fill)
+        );
+        svg.push_str(&paths.data);
+        svg.push_str("\"/>\n");
+    }
+    svg.push_str("</svg>\n");
+    paths.into_output(svg)
+}
+
+/// The outline options of [`SvgOptions`].
+pub(crate) fn outline_options(opts: &SvgOptions) -> OutlineOptions {
     let grid = opts.grid.min(MAX_GRID);
-    // Multiples of 2^-grid have at most `grid` decimals: written exactly.
-    let precision = usize::from(grid);
-    let outline = OutlineOptions {
+    OutlineOptions {
         tolerance: opts.tolerance,
         min_clearance: if opts.min_clearance >= 0.0 {
             opts.min_clearance
@@ -274,19 +329,72 @@ pub(crate) fn svg_document_reporting(
         // image left 26 px wrong in Chromium on the 27 shared samples instead of 12 (conic),
         // for 14% less time.
         clipping: EdgeClipping::Unknown,
-    };
+    }
+}
+
+/// The path data of every contour of a decomposition, and what went into it.
+pub(crate) struct PathData {
+    /// The `d` attribute's value (empty without contours).
+    pub(crate) data: String,
+    commands: CommandCounts,
+    max_fit_error: f64,
+    fallbacks: FallbackCounts,
+    joins: JoinCounts,
+}
+
+impl PathData {
+    /// The [`SvgOutput`] of the document `svg` drawn with these paths alone.
+    pub(crate) fn into_output(self, svg: String) -> SvgOutput {
+        let mut out = empty_output(svg);
+        out.add(&self);
+        out
+    }
+}
+
+/// An [`SvgOutput`] of `svg` with no command counted.
+pub(crate) fn empty_output(svg: String) -> SvgOutput {
+    SvgOutput {
+        svg,
+        commands: CommandCounts::default(),
+        max_fit_error: 0.0,
+        fallbacks: 0,
+        fallback_reasons: FallbackCounts::default(),
+        joins: JoinCounts::default(),
+    }
+}
+
+impl SvgOutput {
+    /// Counts the commands, fallbacks and joins of `paths` in this output.
+    pub(crate) fn add(&mut self, paths: &PathData) {
+        self.commands.add(&paths.commands);
+        self.fallback_reasons.add(&paths.fallbacks);
+        self.fallbacks = self.fallback_reasons.total();
+        self.joins.add(&paths.joins);
+        self.max_fit_error = self.max_fit_error.max(paths.max_fit_error);
+    }
+}
+
+/// Draws every contour of `d` (see [`crate::outline`]; with `band`, smooth within it) and
+/// writes its path data, moved by
+/// `-shift` pixels in x and y, calling `done` with the number of contours drawn so far
+/// after each group of them.
+pub(crate) fn path_data(
+    d: &Decomposition,
+    outline: &OutlineOptions,
+    band: Option<&Band>,
+    shift: u32,
+    done: &(dyn Fn(usize) + Sync),
+) -> PathData {
+    let shift = f64::from(shift);
+    let basis = d.model.basis();
+    // Multiples of 2^-grid have at most `grid` decimals: written exactly.
+    let precision = usize::from(outline.grid);
     let mut commands = CommandCounts::default();
     let mut fallbacks = FallbackCounts::default();
     let mut joins = JoinCounts::default();
     let mut max_fit_error = 0.0f64;
     let empty = Vec::new();
     let mut svg = String::new();
-    let _ = writeln!(
-        svg,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
-         height=\"{height}\" viewBox=\"0 0 {width} {height}\">"
-    );
-    let mut opened = false;
     // Contours are drawn independently, in parallel, a group at a time (only the group's
     // path data is held besides the document); appended in order, so the document does not
     // depend on the number of threads.
@@ -296,10 +404,27 @@ pub(crate) fn svg_document_reporting(
             .enumerate()
             .map(|(k, contour)| {
                 let pieces = d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
-                let mut cp = contour_path(contour, pieces, &basis, &outline);
+                let exact = || contour_path(contour, pieces, &basis, outline);
+                let mut cp = match band {
+                    // The exact drawing meets the band's guarantee too: the one with fewer
+                    // commands, unless the exact one has a pixel staircase.
+                    Some(band) => {
+                        let exact = exact();
+                        match band_contour_path(contour, band, outline) {
+                            Some(smooth)
+                                if smooth.counts().total() <= exact.counts().total()
+                                    || has_staircase(exact.start, &exact.commands) =>
+                            {
+                                smooth
+                            }
+                            _ => exact,
+                        }
+                    }
+                    None => exact(),
+                };
                 drop_closing_line(&mut cp);
                 let mut data = String::new();
-                write_path_data(&cp, precision, &mut data);
+                write_path_data(&cp, precision, shift, &mut data);
                 // Only the counts are kept: the commands are written.
                 let counts = cp.counts();
                 cp.commands = Vec::new();
@@ -312,29 +437,14 @@ pub(crate) fn svg_document_reporting(
             fallbacks.add(&cp.fallbacks);
             joins.add(&cp.joins);
             max_fit_error = max_fit_error.max(cp.max_fit_error);
-            if !data.is_empty() {
-                if !opened {
-                    let _ = write!(
-                        svg,
-                        "<path fill=\"{}\" fill-rule=\"nonzero\" d=\"",
-                        xml_escape(&opts.fill)
-                    );
-                    opened = true;
-                }
-                svg.push_str(&data);
-            }
+            svg.push_str(&data);
         }
     }
-    if opened {
-        svg.push_str("\"/>\n");
-    }
-    svg.push_str("</svg>\n");
-    SvgOutput {
-        svg,
+    PathData {
+        data: svg,
         commands,
         max_fit_error,
-        fallbacks: fallbacks.total(),
-        fallback_reasons: fallbacks,
+        fallbacks,
         joins,
     }
 }

@@ -26,6 +26,9 @@
 //! Outer borders run counter-clockwise on screen, hole borders clockwise (the foreground
 //! on the left); with the `nonzero` fill rule the foreground has winding ±1, holes 0.
 
+mod band_cells;
+mod band_path;
+mod band_polygon;
 mod builder;
 mod cracks;
 mod joins;
@@ -36,6 +39,7 @@ mod smooth;
 mod stretch;
 mod vertices;
 
+pub(crate) use band_path::{band_contour_path, has_staircase};
 pub use joins::JUNCTION_MAX_DISTANCE;
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
 pub use render_check::EdgeClipping;

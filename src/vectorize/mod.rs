@@ -1,13 +1,18 @@
 //! The one-call entry point: an image in; the SVG, the decomposition and whatever else was
 //! asked out.
 
+mod colour;
 mod options;
 
-pub use options::{Options, Progress, ProgressFn, Stage};
+pub use colour::{stack_order, ColourLayer, ColourVectorized};
+pub use options::{Layout, Options, Progress, ProgressFn, Stage};
 
 use std::path::{Path, PathBuf};
 
-use crate::bitmap::{load_memory, load_path, Cleaned, Compat, LoadOptions, Mask};
+use crate::bitmap::{
+    alpha_mask, decode_rgba, has_transparency, load_memory, load_path, load_rgba, Band, Cleaned,
+    Compat, LoadOptions, Mask, MAX_BAND,
+};
 use crate::contour::{trace, Contour, Convention};
 use crate::decompose::{decompose_reporting, Decomposition, OutlierRule};
 use crate::error::Error;
@@ -15,7 +20,7 @@ use crate::estimate::work_estimate;
 use crate::export::json::{decomposition_json, JsonHeader};
 use crate::export::picture::{decomposition_picture, default_scale};
 use crate::export::svg::{svg_document_reporting, SvgOutput};
-use crate::fidelity::{compare, rasterize_svg, FidelityReport};
+use crate::fidelity::{band_check, compare, rasterize_svg, BandCheck, FidelityReport};
 use crate::output::png_bytes;
 
 /// What [`vectorize`] reads.
@@ -79,6 +84,8 @@ pub struct Fidelity {
     pub report: FidelityReport,
     /// The SVG as `resvg --shape-rendering crispEdges` draws it.
     pub rendered: Mask,
+    /// With [`Options::smooth`]: how far from the border the differing pixels are.
+    pub band: Option<BandCheck>,
 }
 
 /// Everything [`vectorize`] made.
@@ -101,6 +108,12 @@ pub struct Vectorized {
     pub json: Option<String>,
     /// The decomposition picture as PNG bytes, if asked.
     pub picture: Option<Vec<u8>>,
+    /// The regions and layers of a colour run ([`Options::colors`]); `None` for a binary
+    /// one. A colour run's `mask` holds the pixels of every region, its `decomposition`
+    /// every layer's contours in drawing order, its `json` the
+    /// `layertrace-colour/1` text, and its `fidelity` is `None` (see
+    /// [`ColourVectorized::fidelity`]).
+    pub colour: Option<ColourVectorized>,
 }
 
 impl Vectorized {
@@ -140,6 +153,43 @@ pub fn vectorize<'a>(
 
 fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
     let name = source.name();
+    if let Some(nu) = options.smooth {
+        if !(nu > 0.0 && nu <= MAX_BAND) {
+            return Err(Error::Arguments(format!(
+                "smooth: {nu} is not a distance in (0, {MAX_BAND}] pixels"
+            )));
+        }
+        if options.compat == Compat::Ipol {
+            return Err(Error::Arguments(
+                "smooth: not with the IPOL conventions (--compat ipol)".into(),
+            ));
+        }
+    }
+    if let Some(colors) = options.colors {
+        if options.smooth.is_some() {
+            return Err(Error::Arguments(
+                "--smooth with --colors is not built yet: smooth each colour's mask instead".into(),
+            ));
+        }
+        if options.alpha {
+            return Err(Error::Arguments(
+                "--alpha is for one-colour icons; --colors already keeps transparent pixels out"
+                    .into(),
+            ));
+        }
+        let c = colour::run(&name, source, colors, options)?;
+        return Ok(Vectorized {
+            mask: c.mask,
+            threshold: 0,
+            cleaned: Cleaned::default(),
+            decomposition: c.merged,
+            svg: c.svg,
+            fidelity: None,
+            json: c.json,
+            picture: None,
+            colour: Some(c.colour),
+        });
+    }
     let load = LoadOptions {
         threshold: options.effective_threshold(),
         invert: options.invert,
@@ -149,6 +199,17 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
         turdsize: options.turdsize,
     };
     let (mask, threshold, cleaned) = match source {
+        Source::Path(path) if options.alpha => {
+            let mut mask = alpha_mask(&load_rgba(path, options.max_pixels, options.max_memory)?);
+            let cleaned = mask.clean(options.turdsize);
+            (mask, 0, cleaned)
+        }
+        Source::Bytes(bytes) if options.alpha => {
+            let rgba = decode_rgba(bytes, &name, options.max_pixels, options.max_memory)?;
+            let mut mask = alpha_mask(&rgba);
+            let cleaned = mask.clean(options.turdsize);
+            (mask, 0, cleaned)
+        }
         Source::Path(path) => {
             let l = load_path(path, &load)?;
             (l.mask, l.threshold, l.cleaned)
@@ -163,6 +224,9 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
             (mask, 0, cleaned)
         }
     };
+    if mask.count_foreground() == 0 && !options.alpha {
+        no_foreground(source, &name, threshold, options)?;
+    }
     let ipol = options.compat == Compat::Ipol;
     let (convention, rule) = if ipol {
         (Convention::Ipol, OutlierRule::Any)
@@ -223,15 +287,19 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
             })?)
         }
     };
-    let svg = options
-        .svg
-        .as_ref()
-        .map(|o| svg_document_reporting(&d, mask.width(), mask.height(), o, &on_draw));
+    let band = match (options.smooth, &options.svg) {
+        (Some(nu), Some(_)) => Band::new(&mask, nu),
+        _ => None,
+    };
+    let svg = options.svg.as_ref().map(|o| {
+        svg_document_reporting(&d, mask.width(), mask.height(), o, band.as_ref(), &on_draw)
+    });
     let fidelity = match (&svg, options.fidelity) {
         (Some(svg), true) => {
             let rendered = rasterize_svg(&svg.svg, mask.width(), mask.height())?;
             Some(Fidelity {
                 report: compare(&mask, &rendered),
+                band: band.as_ref().map(|b| band_check(&mask, &rendered, b.nu())),
                 rendered,
             })
         }
@@ -246,7 +314,33 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
         fidelity,
         json,
         picture,
+        colour: None,
     })
+}
+
+/// [`Error::NoForeground`] when the image behind an empty mask has transparency (a light
+/// logo on transparency: `--alpha` draws it); the image is decoded again for this only.
+/// Standard input, read once, is not checked.
+fn no_foreground(
+    source: Source<'_>,
+    name: &Path,
+    threshold: u8,
+    options: &Options,
+) -> Result<(), Error> {
+    let rgba = match source {
+        Source::Path(path) if path != Path::new("-") => {
+            load_rgba(path, options.max_pixels, options.max_memory)
+        }
+        Source::Bytes(bytes) => decode_rgba(bytes, name, options.max_pixels, options.max_memory),
+        _ => return Ok(()),
+    };
+    match rgba {
+        Ok(rgba) if has_transparency(&rgba) => Err(Error::NoForeground {
+            path: name.to_path_buf(),
+            threshold,
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// The largest decomposition picture drawn (larger ones are refused).
@@ -257,7 +351,7 @@ fn picture_max_pixels(options: &Options) -> u64 {
 /// Refuses a run whose work after tracing would need more than [`Options::max_memory`]
 /// bytes, before it allocates anything: the decomposition, and what the asked outputs need
 /// on top of it.
-fn check_memory(
+pub(super) fn check_memory(
     name: &Path,
     options: &Options,
     contours: &[Contour],

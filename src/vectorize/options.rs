@@ -30,6 +30,27 @@ pub struct Progress {
     pub total: u64,
 }
 
+/// How the regions of a colour image are drawn ([`Options::colors`]).
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Layout {
+    /// One path per colour, drawn in a fixed order; each covers the pixels of its colour
+    /// and of the colours drawn after it (which paint over it), never those of the colours
+    /// drawn before it. Exact in crispEdges; no background shows between regions when
+    /// anti-aliased.
+    #[default]
+    Stack,
+}
+
+impl Layout {
+    /// The name on the command line and in the JSON: `stack`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layout::Stack => "stack",
+        }
+    }
+}
+
 /// A callback told of progress, from any worker thread: once per chunk of 256 contours while
 /// decomposing, once per group of 4 096 while drawing. Calls from different threads may
 /// arrive out of order.
@@ -68,6 +89,16 @@ pub struct Options {
     pub compat: Compat,
     /// The SVG's options; `None` draws no SVG (and checks no fidelity).
     pub svg: Option<SvgOptions>,
+    /// Vectorize in colour: regions of at most this many flat colours (1 to 256; see
+    /// [`colour_regions`](crate::colour_regions)), one path per colour, instead of one
+    /// thresholded mask. `None` (the default): binary. Not for a mask input.
+    pub colors: Option<u16>,
+    /// How the colour regions are drawn. Default [`Layout::Stack`].
+    pub layout: Layout,
+    /// Binary, with the alpha channel as the mask (alpha at least
+    /// [`OPAQUE_ALPHA`](crate::OPAQUE_ALPHA)) instead of thresholded grey levels: for
+    /// one-colour icons on transparency, whatever their colour. Not with `colors`.
+    pub alpha: bool,
     /// Render the SVG back with resvg and compare it with the mask.
     pub fidelity: bool,
     /// Write the decomposition's JSON text.
@@ -84,6 +115,12 @@ pub struct Options {
     pub budget: WorkBudget,
     /// How each contour is cut into pieces. Default [`Cover::Greedy`] (the paper's).
     pub cover: Cover,
+    /// Draw smooth curves within this many pixels of the border instead of the exact
+    /// outline (see [`smooth_svg_document`](crate::smooth_svg_document)): every pixel the
+    /// SVG renders differently lies within ν of the border. `None` (default): exact.
+    /// Values outside `0 < ν <= MAX_BAND` are refused by [`vectorize`](crate::vectorize);
+    /// not with [`Compat::Ipol`].
+    pub smooth: Option<f64>,
     /// Run on this thread pool instead of rayon's global one.
     pub pool: Option<Arc<rayon::ThreadPool>>,
     /// Told of the progress of the long stages.
@@ -99,6 +136,9 @@ impl Default for Options {
             turdsize: 0,
             compat: Compat::Default,
             svg: Some(SvgOptions::default()),
+            colors: None,
+            layout: Layout::Stack,
+            alpha: false,
             fidelity: false,
             json: false,
             picture: None,
@@ -106,6 +146,7 @@ impl Default for Options {
             max_memory: default_max_memory(),
             budget: WorkBudget::default(),
             cover: Cover::default(),
+            smooth: None,
             pool: None,
             progress: None,
         }
@@ -121,6 +162,9 @@ impl fmt::Debug for Options {
             .field("turdsize", &self.turdsize)
             .field("compat", &self.compat)
             .field("svg", &self.svg)
+            .field("colors", &self.colors)
+            .field("layout", &self.layout)
+            .field("alpha", &self.alpha)
             .field("fidelity", &self.fidelity)
             .field("json", &self.json)
             .field("picture", &self.picture)
@@ -128,6 +172,7 @@ impl fmt::Debug for Options {
             .field("max_memory", &self.max_memory)
             .field("budget", &self.budget)
             .field("cover", &self.cover)
+            .field("smooth", &self.smooth)
             .field("pool", &self.pool.as_ref().map(|p| p.current_num_threads()))
             .field("progress", &self.progress.is_some())
             .finish()
@@ -189,6 +234,24 @@ impl Options {
         self
     }
 
+    /// Vectorize in colour with at most `colors` colours (see [`Options::colors`]).
+    pub fn colors(mut self, colors: u16) -> Options {
+        self.colors = Some(colors);
+        self
+    }
+
+    /// How colour regions are drawn.
+    pub fn layout(mut self, layout: Layout) -> Options {
+        self.layout = layout;
+        self
+    }
+
+    /// The alpha channel as the mask (see [`Options::alpha`]).
+    pub fn alpha(mut self, alpha: bool) -> Options {
+        self.alpha = alpha;
+        self
+    }
+
     /// Render the SVG back and compare it with the mask.
     pub fn fidelity(mut self, fidelity: bool) -> Options {
         self.fidelity = fidelity;
@@ -228,6 +291,12 @@ impl Options {
     /// How each contour is cut into pieces (see [`Cover`]).
     pub fn cover(mut self, cover: Cover) -> Options {
         self.cover = cover;
+        self
+    }
+
+    /// Smooth curves within `nu` pixels of the border (see [`Options::smooth`]).
+    pub fn smooth(mut self, nu: f64) -> Options {
+        self.smooth = Some(nu);
         self
     }
 

@@ -1,0 +1,65 @@
+//! The SVG of a colour image: one `<path>` per colour, drawn in order (`--layout stack`).
+//!
+//! The document is that of [`svg_document`](super::svg::svg_document) (same header, same
+//! path data, `fill-rule="nonzero"`; PDF and EPS read it as well), with one
+//! `<path fill="#rrggbb" …>` per layer in drawing order instead of one path; a layer
+//! without contours writes no path. In the
+//! stack layout layer `k` covers the pixels of colour `k` and of every colour drawn after
+//! it: each later layer paints its own pixels over it, so every pixel ends with its own
+//! colour, and no background shows between two regions, anti-aliased or not.
+
+use std::fmt::Write as _;
+
+use crate::decompose::Decomposition;
+use crate::export::svg::{
+    empty_output, outline_options, path_data, xml_escape, SvgOptions, SvgOutput,
+};
+
+/// One layer of [`layers_document`]: its fill and its borders.
+#[derive(Clone, Copy, Debug)]
+pub struct SvgLayer<'a> {
+    /// The `fill` attribute (XML-escaped on output).
+    pub fill: &'a str,
+    /// The borders of the layer's mask, decomposed.
+    pub decomposition: &'a Decomposition,
+}
+
+/// The SVG document of `layers` drawn in order over a `width` × `height` image, with the
+/// outline options of `opts` (its `fill` is not used: each layer has its own). The
+/// layers' contours are in the coordinates of the image padded by `margin` pixels on every
+/// side (image pixel `(x, y)` is `(x + margin, y + margin)`), and are written moved back
+/// into the image's. The output's counts are those of all layers.
+pub fn layers_document(
+    layers: &[SvgLayer<'_>],
+    width: u32,
+    height: u32,
+    margin: u32,
+    opts: &SvgOptions,
+) -> SvgOutput {
+    let outline = outline_options(opts);
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
+         height=\"{height}\" viewBox=\"0 0 {width} {height}\">"
+    );
+    let mut drawn = Vec::with_capacity(layers.len());
+    for layer in layers {
+        let paths = path_data(layer.decomposition, &outline, None, margin, &|_| {});
+        if !paths.data.is_empty() {
+            let _ = writeln!(
+                svg,
+                "<path fill=\"{}\" fill-rule=\"nonzero\" d=\"{}\"/>",
+                xml_escape(layer.fill),
+                paths.data
+            );
+        }
+        drawn.push(paths);
+    }
+    svg.push_str("</svg>\n");
+    let mut out = empty_output(svg);
+    for paths in &drawn {
+        out.add(paths);
+    }
+    out
+}
