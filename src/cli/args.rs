@@ -18,6 +18,9 @@ Examples:
   layertrace photo.png -o photo.svg --colors 8 --json photo.json --diff photo-diff.png
   layertrace white-logo-on-transparency.png -o logo.svg --alpha
 
+The web page (drop an image, see the result): layertrace serve --help
+  layertrace serve --port 8080   (then open http://127.0.0.1:8080/)
+
 Point sets (2-D or 3-D, from a JSON file): layertrace recognize --help
   layertrace recognize points.json --model quadric3
   (an image file named 'recognize' is given as ./recognize)
@@ -207,7 +210,7 @@ pub struct Args {
     pub quiet: bool,
 }
 
-fn parse_model(s: &str) -> Result<Model, String> {
+pub(super) fn parse_model(s: &str) -> Result<Model, String> {
     const IMAGE_MODELS: &str = "line, circle, conic or poly:D (D = 1..=6)";
     match s.parse::<Model>() {
         Ok(Model::Quadric3 | Model::Poly3(_)) => Err(format!(
@@ -239,7 +242,7 @@ fn parse_clearance(s: &str) -> Result<f64, String> {
     number_in(s, 0.0, 10.0, "a distance in pixels")
 }
 
-fn parse_threshold(s: &str) -> Result<Threshold, String> {
+pub(super) fn parse_threshold(s: &str) -> Result<Threshold, String> {
     if s.eq_ignore_ascii_case("otsu") {
         return Ok(Threshold::Otsu);
     }

@@ -8,6 +8,8 @@ mod batch;
 mod progress;
 mod recognize;
 mod run;
+#[cfg(feature = "serve")]
+mod serve;
 
 use clap::Parser;
 use layertrace::Error;
@@ -21,10 +23,16 @@ pub use args::Args;
 ///
 /// `layertrace recognize …` (the first argument exactly `recognize`) runs the recognition of
 /// point sets instead ([`recognize`]); an image named `recognize` is given as `./recognize`.
+/// `layertrace serve …` serves the web page (feature `serve`); an image named `serve` is
+/// given as `./serve`.
 pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
     let argv: Vec<OsString> = argv.into_iter().collect();
     if argv.get(1).is_some_and(|a| a == "recognize") {
         return recognize_main(argv);
+    }
+    #[cfg(feature = "serve")]
+    if argv.get(1).is_some_and(|a| a == "serve") {
+        return serve_main(argv);
     }
     let args = match Args::try_parse_from(argv) {
         Ok(args) => args,
@@ -63,6 +71,28 @@ fn recognize_main(argv: Vec<OsString>) -> ExitCode {
         Err(e) => {
             eprintln!("layertrace: {e}");
             ExitCode::from(exit_code(&e))
+        }
+    }
+}
+
+/// `layertrace serve ARGS`: the web page ([`serve`]); runs until stopped.
+#[cfg(feature = "serve")]
+fn serve_main(argv: Vec<OsString>) -> ExitCode {
+    let rest = argv.into_iter().skip(2);
+    let args = match serve::ServeArgs::try_parse_from(
+        std::iter::once(OsString::from("layertrace serve")).chain(rest),
+    ) {
+        Ok(args) => args,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    match serve::run(args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("layertrace: {e}");
+            ExitCode::from(1)
         }
     }
 }
