@@ -36,7 +36,7 @@ fn dot(a: IPoint, b: IPoint) -> i128 {
 }
 
 /// The constraint pixels near each crack corner, and the test of an edge.
-pub(crate) struct Reach<'a> {
+pub(crate) struct Reach {
     /// Crack corners, doubled.
     corners: Vec<IPoint>,
     /// Per corner, the range of `attached` near it.
@@ -44,15 +44,14 @@ pub(crate) struct Reach<'a> {
     /// Doubled centres of constraint pixels and the sign `cross(edge, centre − start)`
     /// must have.
     attached: Vec<(IPoint, i8)>,
-    nu: f64,
-    _cells: &'a Cells,
+    /// How far from an edge the corners it replaces may lie.
+    limit: f64,
 }
 
-impl<'a> Reach<'a> {
+impl Reach {
     /// The constraints of the closed crack polygon `corners` (integer points) with the
     /// labels of `cells`, for edges within `limit` of the corners they replace.
-    pub(crate) fn new(corners: &[Point], cells: &'a Cells, limit: f64) -> Reach<'a> {
-        let nu = limit;
+    pub(crate) fn new(corners: &[Point], cells: &Cells, limit: f64) -> Reach {
         let r = limit.ceil() as i64 + 1;
         let dbl: Vec<IPoint> = corners
             .iter()
@@ -76,8 +75,7 @@ impl<'a> Reach<'a> {
             corners: dbl,
             starts,
             attached,
-            nu,
-            _cells: cells,
+            limit,
         }
     }
 
@@ -97,7 +95,7 @@ impl<'a> Reach<'a> {
             return false;
         }
         // Doubled coordinates: distances are doubled too.
-        let lim2 = (2.0 * self.nu).powi(2) * l2 as f64;
+        let lim2 = (2.0 * self.limit).powi(2) * l2 as f64;
         for k in i + 1..j {
             let v = self.corner(k);
             let c = cross(d, [v[0] - a[0], v[1] - a[1]]) as f64;
