@@ -92,7 +92,8 @@ pub use bitmap::{
 };
 pub use bitmap::{
     border_distance, default_max_memory, load_memory, load_path, parse_memory_size,
-    threshold_image, Band, Cleaned, Compat, LoadOptions, Loaded, Mask, Threshold, MAX_BAND,
+    threshold_image, Band, Cleaned, Compat, LoadOptions, Loaded, Mask, ParseThresholdError,
+    Threshold, MAX_BAND,
 };
 pub use contour::{trace, Contour, Convention};
 pub use curve::{

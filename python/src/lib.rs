@@ -63,44 +63,7 @@ fn model(s: &str) -> Result<Model, String> {
 
 /// `N` (0..=255), `otsu`, or `adaptive[:R[:K]]`, as the command line's `--threshold`.
 fn threshold(s: &str) -> Result<Threshold, String> {
-    let s = s.trim();
-    if s.eq_ignore_ascii_case("otsu") {
-        return Ok(Threshold::Otsu);
-    }
-    let mut parts = s.split(':');
-    if parts
-        .next()
-        .is_some_and(|p| p.eq_ignore_ascii_case("adaptive"))
-    {
-        let numbers: Vec<&str> = parts.collect();
-        let number = |i: usize, what: &str, hi: u32, default: u32| match numbers.get(i) {
-            None => Ok(default),
-            Some(p) => match p.trim().parse::<u32>() {
-                Ok(v) if (i as u32..=hi).contains(&v) && (i > 0 || v >= 1) => Ok(v),
-                _ => Err(format!(
-                    "'{s}': {what} must be a whole number from {} to {hi}",
-                    if i == 0 { 1 } else { 0 }
-                )),
-            },
-        };
-        if numbers.len() > 2 {
-            return Err(format!("'{s}' has too many parts: adaptive[:R[:K]]"));
-        }
-        let radius = number(0, "R (the window radius)", 1000, Threshold::ADAPTIVE_RADIUS)?;
-        let k = number(
-            1,
-            "K (Sauvola's k in hundredths)",
-            100,
-            u32::from(Threshold::ADAPTIVE_K_PERCENT),
-        )?;
-        return Ok(Threshold::Adaptive {
-            radius,
-            k_percent: k as u8,
-        });
-    }
-    s.parse::<u8>()
-        .map(Threshold::Fixed)
-        .map_err(|_| format!("'{s}' is neither a number 0..=255 nor 'otsu' nor 'adaptive[:R[:K]]'"))
+    s.trim().parse().map_err(|e: layertrace::ParseThresholdError| e.to_string())
 }
 
 fn work(input: Input<'_>, options: &Options) -> Result<Made, LtError> {

@@ -38,4 +38,4 @@ pub use grey::Compat;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};
 pub use mask::Mask;
-pub use otsu::Threshold;
+pub use otsu::{ParseThresholdError, Threshold};

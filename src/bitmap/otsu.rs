@@ -41,6 +41,84 @@ impl Threshold {
     };
 }
 
+/// The error of parsing a [`Threshold`]: the one-line reason.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParseThresholdError(String);
+
+impl std::fmt::Display for ParseThresholdError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ParseThresholdError {}
+
+impl std::str::FromStr for Threshold {
+    type Err = ParseThresholdError;
+
+    /// `N` (0..=255), `otsu`, or `adaptive[:R[:K]]` (R 1 to 1000, K 0 to 100), as the
+    /// command line's `--threshold` takes it.
+    ///
+    /// ```
+    /// use layertrace::Threshold;
+    /// assert_eq!("otsu".parse(), Ok(Threshold::Otsu));
+    /// assert_eq!("100".parse(), Ok(Threshold::Fixed(100)));
+    /// assert_eq!(
+    ///     "adaptive:24".parse(),
+    ///     Ok(Threshold::Adaptive { radius: 24, k_percent: Threshold::ADAPTIVE_K_PERCENT })
+    /// );
+    /// assert!("adaptive:0".parse::<Threshold>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Threshold, ParseThresholdError> {
+        let fail = |m: String| Err(ParseThresholdError(m));
+        if s.eq_ignore_ascii_case("otsu") {
+            return Ok(Threshold::Otsu);
+        }
+        let mut parts = s.split(':');
+        if parts
+            .next()
+            .is_some_and(|p| p.eq_ignore_ascii_case("adaptive"))
+        {
+            let mut number =
+                |what: &str, range: std::ops::RangeInclusive<u32>, default: u32| match parts.next()
+                {
+                    None => Ok(default),
+                    Some(p) => match p.trim().parse::<u32>() {
+                        Ok(v) if range.contains(&v) => Ok(v),
+                        _ => Err(ParseThresholdError(format!(
+                            "'{s}': {what} must be a whole number from {} to {}",
+                            range.start(),
+                            range.end()
+                        ))),
+                    },
+                };
+            let radius = number(
+                "R (the window radius)",
+                1..=1000,
+                Threshold::ADAPTIVE_RADIUS,
+            )?;
+            let k = number(
+                "K (Sauvola's k in hundredths)",
+                0..=100,
+                u32::from(Threshold::ADAPTIVE_K_PERCENT),
+            )?;
+            if parts.next().is_some() {
+                return fail(format!("'{s}' has too many parts: adaptive[:R[:K]]"));
+            }
+            return Ok(Threshold::Adaptive {
+                radius,
+                k_percent: k as u8,
+            });
+        }
+        match s.parse::<u8>() {
+            Ok(v) => Ok(Threshold::Fixed(v)),
+            Err(_) => fail(format!(
+                "'{s}' is neither a number 0..=255 nor 'otsu' nor 'adaptive[:R[:K]]'"
+            )),
+        }
+    }
+}
+
 pub(super) fn histogram(grey: &[u8]) -> [u64; 256] {
     let mut h = [0u64; 256];
     for &g in grey {

@@ -243,47 +243,8 @@ fn parse_clearance(s: &str) -> Result<f64, String> {
 }
 
 pub(super) fn parse_threshold(s: &str) -> Result<Threshold, String> {
-    if s.eq_ignore_ascii_case("otsu") {
-        return Ok(Threshold::Otsu);
-    }
-    let mut parts = s.split(':');
-    if parts
-        .next()
-        .is_some_and(|p| p.eq_ignore_ascii_case("adaptive"))
-    {
-        let mut number =
-            |what: &str, range: std::ops::RangeInclusive<u32>, default: u32| match parts.next() {
-                None => Ok(default),
-                Some(p) => match p.trim().parse::<u32>() {
-                    Ok(v) if range.contains(&v) => Ok(v),
-                    _ => Err(format!(
-                        "'{s}': {what} must be a whole number from {} to {}",
-                        range.start(),
-                        range.end()
-                    )),
-                },
-            };
-        let radius = number(
-            "R (the window radius)",
-            1..=1000,
-            Threshold::ADAPTIVE_RADIUS,
-        )?;
-        let k = number(
-            "K (Sauvola's k in hundredths)",
-            0..=100,
-            u32::from(Threshold::ADAPTIVE_K_PERCENT),
-        )?;
-        if parts.next().is_some() {
-            return Err(format!("'{s}' has too many parts: adaptive[:R[:K]]"));
-        }
-        return Ok(Threshold::Adaptive {
-            radius,
-            k_percent: k as u8,
-        });
-    }
-    s.parse::<u8>()
-        .map(Threshold::Fixed)
-        .map_err(|_| format!("'{s}' is neither a number 0..=255 nor 'otsu' nor 'adaptive[:R[:K]]'"))
+    s.parse()
+        .map_err(|e: layertrace::ParseThresholdError| e.to_string())
 }
 
 /// The most worker threads accepted: four per core (more only costs memory and start-up).
