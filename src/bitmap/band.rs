@@ -139,16 +139,33 @@ impl Band {
 /// searched up to `limit` pixels. Returns `None` when no pixel of the other colour is within
 /// `limit` (or the pixel is outside the image).
 pub fn border_distance(mask: &Mask, x: i64, y: i64, limit: f64) -> Option<f64> {
-    let (w, h) = (i64::from(mask.width()), i64::from(mask.height()));
+    let v = mask.get(x, y);
+    distance_where(mask.width(), mask.height(), x, y, limit, |u, w| {
+        mask.get(u, w) != v
+    })
+}
+
+/// The distance from the centre of pixel `(x, y)` to the square of the nearest pixel `q` of
+/// a `width` × `height` image with `other(q)`, searched up to `limit` pixels (the distance
+/// of [`border_distance`], for any notion of "the other colour"). Returns `None` when there
+/// is none within `limit`, or `(x, y)` is outside the image.
+pub fn distance_where(
+    width: u32,
+    height: u32,
+    x: i64,
+    y: i64,
+    limit: f64,
+    other: impl Fn(i64, i64) -> bool,
+) -> Option<f64> {
+    let (w, h) = (i64::from(width), i64::from(height));
     if x < 0 || y < 0 || x >= w || y >= h {
         return None;
     }
-    let v = mask.get(x, y);
     offsets(limit.clamp(0.0, MAX_BAND * 4.0))
         .into_iter()
         .find(|&(dx, dy, _)| {
             let (qx, qy) = (x + dx, y + dy);
-            qx >= 0 && qy >= 0 && qx < w && qy < h && mask.get(qx, qy) != v
+            qx >= 0 && qy >= 0 && qx < w && qy < h && other(qx, qy)
         })
         .map(|(_, _, d)| d)
 }

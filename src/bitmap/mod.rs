@@ -28,7 +28,7 @@ mod png;
 #[cfg(test)]
 mod tests;
 
-pub use band::{border_distance, Band, MAX_BAND};
+pub use band::{border_distance, distance_where, Band, MAX_BAND};
 pub use clean::Cleaned;
 pub use colour::{
     alpha_mask, colour_regions, decode_rgba, has_transparency, load_rgba, Colour, ColourImage,

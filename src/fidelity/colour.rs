@@ -19,7 +19,7 @@
 //! may cross the square of the pixel next to an edge pixel (a 3 × 3 neighbourhood was
 //! not enough: a random 7 × 9 shape had one such pixel).
 
-use crate::bitmap::{Colour, ColourImage};
+use crate::bitmap::{distance_where, Colour, ColourImage};
 use crate::error::Error;
 
 /// The pixels of one colour that differ.
@@ -147,29 +147,12 @@ pub fn colour_fidelity(
 }
 
 /// Distance from the centre of pixel `(x, y)` to the square of the nearest pixel of another
-/// colour or of no region (see [`crate::bitmap::border_distance`]), searched up to `limit`.
+/// colour or of no region, searched up to `limit`.
 fn colour_border_distance(expected: &ColourImage, x: i64, y: i64, limit: f64) -> Option<f64> {
     let own = expected.get(x, y);
-    let r = (limit + 0.5).ceil() as i64;
-    let (w, h) = (i64::from(expected.width()), i64::from(expected.height()));
-    let mut best: Option<f64> = None;
-    for dy in -r..=r {
-        for dx in -r..=r {
-            let (u, v) = (x + dx, y + dy);
-            if (dx, dy) == (0, 0) || u < 0 || v < 0 || u >= w || v >= h {
-                continue;
-            }
-            if expected.get(u, v) != own {
-                let d = (dx.abs() as f64 - 0.5)
-                    .max(0.0)
-                    .hypot((dy.abs() as f64 - 0.5).max(0.0));
-                if d <= limit && best.is_none_or(|b| d < b) {
-                    best = Some(d);
-                }
-            }
-        }
-    }
-    best
+    distance_where(expected.width(), expected.height(), x, y, limit, |u, v| {
+        expected.get(u, v) != own
+    })
 }
 
 /// A picture of the comparison: the regions in their colours, faded halfway to white,

@@ -107,9 +107,23 @@ pub(super) fn run(
         rank[k] = r;
     }
     let mut layers = Vec::with_capacity(order.len());
+    // Smooth outlines: each layer's band, its outline kept in the image's part of the
+    // padded mask (a path leaving the image is cut by the renderer).
+    let mut bands: Vec<Option<Band>> = Vec::with_capacity(order.len());
+    let (m, iw, ih) = (
+        MARGIN as f64,
+        f64::from(image.width()),
+        f64::from(image.height()),
+    );
     for (r, &k) in order.iter().enumerate() {
         let mask = image.mask_where(|c| rank[c] >= r);
         let padded = pad(&mask);
+        bands.push(
+            options
+                .smooth
+                .and_then(|nu| Band::new(&padded, nu))
+                .map(|b| b.within(m, m, m + iw, m + ih)),
+        );
         let contours = trace(&padded, Convention::Default);
         super::check_memory(name, options, &contours, &mask)?;
         let decomposition = decompose_reporting(
@@ -129,17 +143,6 @@ pub(super) fn run(
     }
     let (w, h) = (image.width(), image.height());
     let fills: Vec<String> = layers.iter().map(|l| l.colour.to_string()).collect();
-    // Smooth outlines: each layer's band, its outline kept in the image's part of the
-    // padded mask (a path leaving the image is cut by the renderer).
-    let m = MARGIN as f64;
-    let bands: Vec<Option<Band>> = layers
-        .iter()
-        .map(|l| {
-            let nu = options.smooth?;
-            let band = Band::new(&pad(&l.mask), nu)?;
-            Some(band.within(m, m, m + f64::from(w), m + f64::from(h)))
-        })
-        .collect();
     let svg = options.svg.as_ref().map(|o| {
         let svg_layers: Vec<SvgLayer<'_>> = layers
             .iter()
