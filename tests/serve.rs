@@ -57,11 +57,31 @@ fn request(addr: &str, head: &str, body: &[u8]) -> (u16, String) {
     s.read_to_end(&mut answer).unwrap();
     let answer = String::from_utf8_lossy(&answer).into_owned();
     let status = answer[9..12].parse().unwrap();
-    let body = answer
-        .split_once("\r\n\r\n")
-        .map_or("", |(_, b)| b)
-        .to_string();
+    let (head, body) = answer.split_once("\r\n\r\n").unwrap_or((&answer, ""));
+    let chunked = head
+        .lines()
+        .any(|l| l.eq_ignore_ascii_case("transfer-encoding: chunked"));
+    let body = if chunked {
+        unchunk(body)
+    } else {
+        body.to_string()
+    };
     (status, body)
+}
+
+/// The body of a chunked answer (tiny_http chunks answers over 32 KiB): each chunk is its
+/// size in hexadecimal, CRLF, the bytes, CRLF; a chunk of size 0 ends it.
+fn unchunk(mut rest: &str) -> String {
+    let mut body = String::new();
+    loop {
+        let (size, after) = rest.split_once("\r\n").expect("a chunk size line");
+        let size = usize::from_str_radix(size.trim(), 16).expect("a hexadecimal chunk size");
+        if size == 0 {
+            return body;
+        }
+        body.push_str(&after[..size]);
+        rest = &after[size + 2..];
+    }
 }
 
 fn sample() -> Vec<u8> {
@@ -118,9 +138,47 @@ fn page_assets_and_a_conversion() {
 }
 
 #[test]
+fn colours_and_smooth_reach_the_library() {
+    let server = serve(&[]);
+    let logo = std::fs::read("samples/colour/colour_logo_aa.png").unwrap();
+    // The page sends every field; a colour run ignores threshold, invert and turdsize.
+    let (status, body) = request(
+        &server.addr,
+        "POST /api/vectorize?colors=4&threshold=90&invert=1&turdsize=3&alpha=0&smooth= HTTP/1.1",
+        &logo,
+    );
+    assert_eq!(status, 200, "{body}");
+    let v: serde_json::Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(v["differing"], 0);
+    assert_eq!(v["seams"], 0);
+    let colours = v["colours"].as_array().unwrap();
+    assert!((2..=4).contains(&colours.len()), "{colours:?}");
+    assert!(colours.iter().all(|c| c["differing"] == 0));
+    let svg = v["svg"].as_str().unwrap();
+    assert_eq!(svg.matches("<path").count(), colours.len());
+    for c in colours {
+        assert!(svg.contains(&format!("fill=\"{}\"", c["colour"].as_str().unwrap())));
+    }
+    assert!(v["diff_png"].as_str().unwrap().starts_with("iVBORw0KGgo"));
+    assert_eq!(v["beyond"], serde_json::Value::Null);
+    // Smooth, one colour: pixels change only within ν.
+    let (status, body) = request(
+        &server.addr,
+        "POST /api/vectorize?smooth=1&colors= HTTP/1.1",
+        &sample(),
+    );
+    assert_eq!(status, 200, "{body}");
+    let v: serde_json::Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(v["beyond"], 0);
+    assert_eq!(v["smooth"], 1.0);
+    assert!(v["differing"].as_u64().unwrap() > 0);
+    assert_eq!(v["colours"], serde_json::Value::Null);
+}
+
+#[test]
 fn errors_are_one_line_json() {
     let server = serve(&["--max-upload", "1K", "--max-pixels", "1000"]);
-    let cases: [(&str, &[u8], u16, &str); 6] = [
+    let cases: [(&str, &[u8], u16, &str); 9] = [
         (
             "POST /api/vectorize?name=a.png HTTP/1.1",
             b"not an image",
@@ -150,6 +208,24 @@ fn errors_are_one_line_json() {
             b"",
             400,
             "unknown parameter 'colour'",
+        ),
+        (
+            "POST /api/vectorize?colors=1 HTTP/1.1",
+            b"",
+            400,
+            "not a number from 2 to 256",
+        ),
+        (
+            "POST /api/vectorize?smooth=0 HTTP/1.1",
+            b"",
+            400,
+            "not a distance in (0, 16]",
+        ),
+        (
+            "POST /api/vectorize?colors=4&alpha=1 HTTP/1.1",
+            b"",
+            400,
+            "do not go together",
         ),
         (
             "GET /api/vectorize HTTP/1.1",
