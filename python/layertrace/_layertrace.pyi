@@ -1,6 +1,6 @@
 """Type stubs of the native module (PyO3); use the documented wrapper, layertrace.vectorize."""
 
-from typing import Any, Dict, Optional
+from typing import Any, Dict, List, Optional
 
 __version__: str
 
@@ -23,4 +23,15 @@ def vectorize(
     fidelity: bool = True,
     picture_scale: Optional[int] = None,
     max_pixels: int = 400_000_000,
+    colors: Optional[int] = None,
+    layout: str = "stack",
+    alpha: bool = False,
+    smooth: Optional[float] = None,
 ) -> Dict[str, Any]: ...
+
+def recognize(
+    inliers: List[List[int]],
+    above: List[List[int]],
+    below: List[List[int]],
+    model: str,
+) -> str: ...

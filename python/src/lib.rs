@@ -10,8 +10,9 @@
 use std::path::PathBuf;
 
 use layertrace::{
-    diff_image, png_bytes, threshold_image, vectorize as run, Compat, Cover, Error as LtError,
-    LoadOptions, Mask, Model, Options, Threshold,
+    colour_diff_image, diff_image, png_bytes, recognition_json, recognize_points, threshold_image,
+    vectorize as run, Compat, Cover, Error as LtError, Layout, LoadOptions, Mask, Model, Options,
+    PointSets, Threshold,
 };
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
@@ -35,6 +36,13 @@ enum Input<'a> {
     Mask(&'a [u8], u32, u32),
 }
 
+/// The figures of one colour of a colour run.
+struct ColourMade {
+    colour: String,
+    pixels: u64,
+    differing: u64,
+}
+
 /// Everything the work made, before it becomes a dict.
 struct Made {
     svg: String,
@@ -45,8 +53,15 @@ struct Made {
     contours: usize,
     pieces: usize,
     commands: usize,
+    /// Binary runs: differing, missing, extra, IoU.
     fidelity: Option<(u64, u64, u64, f64)>,
-    decomposition_png: Vec<u8>,
+    /// Colour runs: differing pixels, painted outside the regions, seam pixels, per colour.
+    colour_fidelity: Option<(u64, u64, u64, Vec<ColourMade>)>,
+    /// Smooth runs: differing pixels farther than NU from the border, and the largest
+    /// distance of a differing pixel.
+    band: Option<(u64, f64)>,
+    /// Binary runs only.
+    decomposition_png: Option<Vec<u8>>,
     diff_png: Option<Vec<u8>>,
 }
 
@@ -61,9 +76,19 @@ fn model(s: &str) -> Result<Model, String> {
     }
 }
 
+/// `stack` (the only layout so far), as the command line's `--layout`.
+fn layout(s: &str) -> Result<Layout, String> {
+    match s {
+        "stack" => Ok(Layout::Stack),
+        other => Err(format!("unknown layout '{other}': expected stack")),
+    }
+}
+
 /// `N` (0..=255), `otsu`, or `adaptive[:R[:K]]`, as the command line's `--threshold`.
 fn threshold(s: &str) -> Result<Threshold, String> {
-    s.trim().parse().map_err(|e: layertrace::ParseThresholdError| e.to_string())
+    s.trim()
+        .parse()
+        .map_err(|e: layertrace::ParseThresholdError| e.to_string())
 }
 
 fn work(input: Input<'_>, options: &Options) -> Result<Made, LtError> {
@@ -101,16 +126,31 @@ fn work(input: Input<'_>, options: &Options) -> Result<Made, LtError> {
                 }
             }
             .ok_or_else(bad)?;
-            let load = LoadOptions {
-                threshold: options.effective_threshold(),
-                invert: options.invert,
-                compat: Compat::Default,
-                max_pixels: options.max_pixels,
-                max_memory: options.max_memory,
-                turdsize: 0, // applied by `run` to the mask
-            };
-            let loaded = threshold_image(&img, &load);
-            (run(&loaded.mask, options)?, loaded.threshold)
+            if options.colors.is_some() || options.alpha {
+                // Colours and the alpha mask are read from an encoded image: a PNG made in
+                // memory, lossless.
+                let mut png = Vec::new();
+                img.write_with_encoder(image::codecs::png::PngEncoder::new_with_quality(
+                    &mut png,
+                    image::codecs::png::CompressionType::Fast,
+                    image::codecs::png::FilterType::NoFilter,
+                ))
+                .map_err(|e| LtError::Arguments(format!("cannot encode the pixels: {e}")))?;
+                let out = run(png.as_slice(), options)?;
+                let t = out.threshold;
+                (out, t)
+            } else {
+                let load = LoadOptions {
+                    threshold: options.effective_threshold(),
+                    invert: options.invert,
+                    compat: Compat::Default,
+                    max_pixels: options.max_pixels,
+                    max_memory: options.max_memory,
+                    turdsize: 0, // applied by `run` to the mask
+                };
+                let loaded = threshold_image(&img, &load);
+                (run(&loaded.mask, options)?, loaded.threshold)
+            }
         }
         Input::Mask(data, width, height) => {
             let name = PathBuf::from("<mask>");
@@ -129,9 +169,15 @@ fn work(input: Input<'_>, options: &Options) -> Result<Made, LtError> {
     };
     let picture_error =
         |e: image::ImageError| LtError::Arguments(format!("cannot encode a picture: {e}"));
-    let diff_png = match &out.fidelity {
-        Some(f) => Some(png_bytes(&diff_image(&out.mask, &f.rendered)).map_err(picture_error)?),
-        None => None,
+    let colour_fidelity = out.colour.as_ref().and_then(|c| c.fidelity.as_ref());
+    let diff_png = match (&out.fidelity, &out.colour, colour_fidelity) {
+        (Some(f), _, _) => {
+            Some(png_bytes(&diff_image(&out.mask, &f.rendered)).map_err(picture_error)?)
+        }
+        (None, Some(c), Some(f)) => Some(
+            png_bytes(&colour_diff_image(&c.regions.image, &f.rendered)).map_err(picture_error)?,
+        ),
+        _ => None,
     };
     Ok(Made {
         svg: out.svg_text().to_string(),
@@ -150,7 +196,25 @@ fn work(input: Input<'_>, options: &Options) -> Result<Made, LtError> {
                 f.report.iou,
             )
         }),
-        decomposition_png: out.picture.clone().unwrap_or_default(),
+        colour_fidelity: colour_fidelity.map(|f| {
+            let colours = f
+                .colours
+                .iter()
+                .map(|d| ColourMade {
+                    colour: d.colour.to_string(),
+                    pixels: d.pixels,
+                    differing: d.differing,
+                })
+                .collect();
+            (f.differing, f.extra, f.seams, colours)
+        }),
+        band: out
+            .fidelity
+            .as_ref()
+            .and_then(|f| f.band)
+            .or_else(|| colour_fidelity.and_then(|f| f.band))
+            .map(|b| (b.beyond, b.max_distance)),
+        decomposition_png: out.picture.clone(),
         diff_png,
     })
 }
@@ -188,7 +252,8 @@ fn check_size(
 #[pyfunction]
 #[pyo3(signature = (kind, data=None, path=None, width=0, height=0, channels=0, *,
                     model="conic", threshold=None, invert=false, turdsize=0, cover="greedy",
-                    fidelity=true, picture_scale=None, max_pixels=400_000_000))]
+                    fidelity=true, picture_scale=None, max_pixels=400_000_000, colors=None,
+                    layout="stack", alpha=false, smooth=None))]
 #[allow(clippy::too_many_arguments)]
 fn vectorize<'py>(
     py: Python<'py>,
@@ -206,6 +271,10 @@ fn vectorize<'py>(
     fidelity: bool,
     picture_scale: Option<u32>,
     max_pixels: u64,
+    colors: Option<u16>,
+    layout: &str,
+    alpha: bool,
+    smooth: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let bad = |m: String| Error::new_err(m);
     let mut options = Options::default()
@@ -216,7 +285,18 @@ fn vectorize<'py>(
         .fidelity(fidelity)
         .json(true)
         .picture(picture_scale)
-        .max_pixels(max_pixels.max(1));
+        .max_pixels(max_pixels.max(1))
+        .alpha(alpha)
+        .layout(self::layout(layout).map_err(bad)?);
+    if let Some(n) = colors {
+        if !(2..=256).contains(&n) {
+            return Err(bad(format!("colors {n} is not from 2 to 256")));
+        }
+        options = options.colors(n);
+    }
+    if let Some(nu) = smooth {
+        options = options.smooth(nu);
+    }
     if let Some(t) = threshold {
         options = options.threshold(self::threshold(t).map_err(bad)?);
     }
@@ -245,23 +325,46 @@ fn vectorize<'py>(
     d.set_item("contours", made.contours)?;
     d.set_item("piece_count", made.pieces)?;
     d.set_item("commands", made.commands)?;
-    match made.fidelity {
-        Some((differing, missing, extra, iou)) => {
-            d.set_item("fidelity", differing)?;
-            d.set_item("missing", missing)?;
-            d.set_item("extra", extra)?;
-            d.set_item("iou", iou)?;
-        }
-        None => {
-            for key in ["fidelity", "missing", "extra", "iou"] {
-                d.set_item(key, py.None())?;
-            }
-        }
+    for key in [
+        "fidelity",
+        "missing",
+        "extra",
+        "iou",
+        "seams",
+        "colours",
+        "beyond",
+        "max_distance",
+    ] {
+        d.set_item(key, py.None())?;
     }
-    d.set_item(
-        "decomposition_png",
-        PyBytes::new(py, &made.decomposition_png),
-    )?;
+    if let Some((differing, missing, extra, iou)) = made.fidelity {
+        d.set_item("fidelity", differing)?;
+        d.set_item("missing", missing)?;
+        d.set_item("extra", extra)?;
+        d.set_item("iou", iou)?;
+    }
+    if let Some((beyond, max_distance)) = made.band {
+        d.set_item("beyond", beyond)?;
+        d.set_item("max_distance", max_distance)?;
+    }
+    if let Some((differing, extra, seams, colours)) = made.colour_fidelity {
+        d.set_item("fidelity", differing)?;
+        d.set_item("extra", extra)?;
+        d.set_item("seams", seams)?;
+        let list = pyo3::types::PyList::empty(py);
+        for c in colours {
+            let item = PyDict::new(py);
+            item.set_item("colour", c.colour)?;
+            item.set_item("pixels", c.pixels)?;
+            item.set_item("differing", c.differing)?;
+            list.append(item)?;
+        }
+        d.set_item("colours", list)?;
+    }
+    match made.decomposition_png {
+        Some(png) => d.set_item("decomposition_png", PyBytes::new(py, &png))?,
+        None => d.set_item("decomposition_png", py.None())?,
+    }
     match made.diff_png {
         Some(png) => d.set_item("diff_png", PyBytes::new(py, &png))?,
         None => d.set_item("diff_png", py.None())?,
@@ -269,10 +372,31 @@ fn vectorize<'py>(
     Ok(d)
 }
 
+/// Recognizes point sets: is there a layer of `model` holding `inliers`, with `above`
+/// strictly above and `below` strictly below? Returns the `layertrace-recognition/1` JSON
+/// text of `layertrace recognize` (the proof either way, checked exactly).
+#[pyfunction]
+#[pyo3(signature = (inliers, above, below, model))]
+fn recognize(
+    py: Python<'_>,
+    inliers: Vec<Vec<i64>>,
+    above: Vec<Vec<i64>>,
+    below: Vec<Vec<i64>>,
+    model: &str,
+) -> PyResult<String> {
+    let model = model
+        .parse::<Model>()
+        .map_err(|e| Error::new_err(e.to_string()))?;
+    let sets = PointSets::new(inliers).with_above(above).with_below(below);
+    py.allow_threads(|| recognize_points(&sets, model).map(|r| recognition_json(&r)))
+        .map_err(|e| Error::new_err(e.to_string()))
+}
+
 /// The native module.
 #[pymodule]
 fn _layertrace(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(vectorize, m)?)?;
+    m.add_function(wrap_pyfunction!(recognize, m)?)?;
     m.add("Error", m.py().get_type::<Error>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
