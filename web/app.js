@@ -46,6 +46,9 @@ async function convert() {
     cover: $("cover").value,
     turdsize: $("turdsize").value || "0",
     invert: $("invert").checked ? "1" : "0",
+    colors: $("colors").value.trim(),
+    smooth: $("smooth").value.trim(),
+    alpha: $("alpha").checked ? "1" : "0",
     name: file.name,
   });
   $("go").disabled = true;
@@ -77,8 +80,33 @@ function show(a, ms) {
   $("contours").textContent = a.contours;
   const diff = $("differing");
   diff.textContent = a.differing === null ? "not checked" : String(a.differing);
-  diff.className = a.differing === 0 ? "good" : "bad";
-  $("iou").textContent = a.iou === null ? "" : a.iou.toFixed(6);
+  // Smooth runs may change pixels within ν: there the figure to watch is "beyond ν".
+  diff.className = a.differing === 0 ? "good" : a.beyond === null ? "bad" : "";
+  $("iou").textContent = a.iou === null || a.iou === undefined ? "–" : a.iou.toFixed(6);
+  $("band-figure").hidden = a.beyond === null;
+  if (a.beyond !== null) {
+    $("beyond").textContent = `${a.beyond} (ν = ${a.smooth}, max ${a.max_distance.toFixed(3)} px)`;
+    $("beyond").className = a.beyond === 0 ? "good" : "bad";
+  }
+  $("seams-figure").hidden = a.seams === null;
+  if (a.seams !== null) {
+    $("seams").textContent = String(a.seams);
+    $("seams").className = a.seams === 0 ? "good" : "bad";
+  }
+  $("diff-key").textContent = a.colours
+    ? "(regions faded, wrong colour red, painted outside them blue)"
+    : "(mask black, missing red, extra blue)";
+  const list = $("colours");
+  list.replaceChildren();
+  list.hidden = !a.colours;
+  for (const c of a.colours || []) {
+    const item = document.createElement("li");
+    const swatch = document.createElement("span");
+    swatch.className = "swatch";
+    swatch.style.background = c.colour;
+    item.append(swatch, `${c.colour}: ${c.pixels} px, ${c.differing} differing`);
+    list.append(item);
+  }
   $("commands").textContent = a.commands;
   $("svgbytes").textContent = `${a.svg_bytes} bytes`;
   $("size").textContent = `${a.width} × ${a.height} px`;
@@ -89,13 +117,17 @@ function show(a, ms) {
   $("out-svg").src = setUrl("out-svg", svg);
   $("out-diff").src = a.diff_png ? setUrl("out-diff", pngBlob(a.diff_png)) : "";
   $("out-dec").src = a.decomposition_png ? setUrl("out-dec", pngBlob(a.decomposition_png)) : "";
+  // (`hidden` would lose to the stylesheet's `display: block`.)
+  $("out-dec").style.display = a.decomposition_png ? "" : "none";
+  $("no-dec").hidden = Boolean(a.decomposition_png);
   const name = baseName(a.name);
   $("dl-svg").href = setUrl("dl-svg", svg);
   $("dl-svg").download = `${name}.svg`;
   $("dl-json").href = setUrl("dl-json", json);
   $("dl-json").download = `${name}.json`;
   $("result").hidden = false;
-  $("status").textContent = `${a.name}: ${a.pieces} pieces, ${a.differing} differing pixels.`;
+  const colours = a.colours ? `${a.colours.length} colours, ` : "";
+  $("status").textContent = `${a.name}: ${colours}${a.pieces} pieces, ${a.differing} differing pixels.`;
   document.body.dataset.state = "done";
   zoom();
 }
@@ -144,6 +176,13 @@ document.addEventListener("DOMContentLoaded", () => {
   });
   $("controls").addEventListener("submit", (e) => { e.preventDefault(); convert(); });
   $("zoom").addEventListener("input", zoom);
+  // A colour run reads no threshold, inversion, turdsize or alpha mask.
+  const colourFields = () => {
+    const colour = $("colors").value.trim() !== "";
+    for (const id of ["threshold", "invert", "turdsize", "alpha"]) $(id).disabled = colour;
+  };
+  $("colors").addEventListener("input", colourFields);
+  colourFields();
   for (const view of document.querySelectorAll(".view")) {
     view.addEventListener("scroll", syncScroll);
   }

@@ -10,7 +10,10 @@
 //! name is refused (no DNS rebinding from a web site).
 
 use clap::Parser;
-use layertrace::{diff_image, png_bytes, vectorize, Cover, Error, Options, Vectorized};
+use layertrace::{
+    colour_diff_image, diff_image, png_bytes, vectorize, Cover, Error, Options, Vectorized,
+    MAX_BAND,
+};
 use std::io::Read;
 use std::net::{IpAddr, SocketAddr};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -262,6 +265,29 @@ fn options(query: &str, state: &State) -> Result<(Options, String), String> {
                 options = options.turdsize(n)
             }
             "cover" => options = options.cover(value.parse::<Cover>().map_err(|e| e.to_string())?),
+            "colors" if value.trim().is_empty() => {}
+            "colors" => {
+                let n = value
+                    .trim()
+                    .parse::<u16>()
+                    .ok()
+                    .filter(|n| (2..=256).contains(n))
+                    .ok_or_else(|| format!("colours '{value}' is not a number from 2 to 256"))?;
+                options = options.colors(n)
+            }
+            "smooth" if value.trim().is_empty() => {}
+            "smooth" => {
+                let nu = value
+                    .trim()
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|nu| *nu > 0.0 && *nu <= MAX_BAND)
+                    .ok_or_else(|| {
+                        format!("smooth '{value}' is not a distance in (0, {MAX_BAND}] pixels")
+                    })?;
+                options = options.smooth(nu)
+            }
+            "alpha" => options = options.alpha(matches!(value.as_str(), "1" | "true" | "on")),
             "name" => {
                 name = value
                     .chars()
@@ -271,6 +297,14 @@ fn options(query: &str, state: &State) -> Result<(Options, String), String> {
             }
             _ => return Err(format!("unknown parameter '{key}'")),
         }
+    }
+    // A colour run reads no threshold, inversion or turdsize (the page greys them out).
+    if options.colors.is_some() && options.alpha {
+        return Err(
+            "colours and 'alpha is the shape' do not go together: colours already \
+                    keep transparent pixels out"
+                .into(),
+        );
     }
     Ok((options, name))
 }
@@ -347,12 +381,34 @@ fn convert(
 fn answer(out: &Vectorized, name: &str, seconds: f64) -> Result<String, Error> {
     let picture_error = |source| Error::Arguments(format!("cannot encode a picture: {source}"));
     let fidelity = out.fidelity.as_ref();
-    let diff = match fidelity {
-        Some(f) => base64(&png_bytes(&diff_image(&out.mask, &f.rendered)).map_err(picture_error)?),
-        None => String::new(),
+    let colour = out.colour.as_ref();
+    let colour_fidelity = colour.and_then(|c| c.fidelity.as_ref());
+    let diff = match (fidelity, colour, colour_fidelity) {
+        (Some(f), _, _) => {
+            base64(&png_bytes(&diff_image(&out.mask, &f.rendered)).map_err(picture_error)?)
+        }
+        (None, Some(c), Some(f)) => base64(
+            &png_bytes(&colour_diff_image(&c.regions.image, &f.rendered)).map_err(picture_error)?,
+        ),
+        _ => String::new(),
     };
     let svg = out.svg.as_ref();
     let report = fidelity.map(|f| f.report);
+    let band = fidelity
+        .and_then(|f| f.band)
+        .or_else(|| colour_fidelity.and_then(|f| f.band));
+    let colours: Option<Vec<serde_json::Value>> = colour_fidelity.map(|f| {
+        f.colours
+            .iter()
+            .map(|d| {
+                serde_json::json!({
+                    "colour": d.colour.to_string(),
+                    "pixels": d.pixels,
+                    "differing": d.differing,
+                })
+            })
+            .collect()
+    });
     Ok(serde_json::json!({
         "name": name,
         "width": out.mask.width(),
@@ -362,7 +418,12 @@ fn answer(out: &Vectorized, name: &str, seconds: f64) -> Result<String, Error> {
         "pieces": out.decomposition.piece_count(),
         "commands": svg.map_or(0, |s| s.commands.total()),
         "svg_bytes": out.svg_text().len(),
-        "differing": report.map(|r| r.differing),
+        "differing": report.map(|r| r.differing).or(colour_fidelity.map(|f| f.differing)),
+        "colours": colours,
+        "seams": colour_fidelity.map(|f| f.seams),
+        "smooth": band.map(|b| b.nu),
+        "beyond": band.map(|b| b.beyond),
+        "max_distance": band.map(|b| b.max_distance),
         "missing": report.map(|r| r.missing),
         "extra": report.map(|r| r.extra),
         "iou": report.map(|r| r.iou),

@@ -135,3 +135,52 @@ def test_page_converts_a_sample_exactly(server, browser, tmp_path):
     assert "cannot decode notes.png" in message, message
     assert not page.is_visible("#result")
 
+
+
+def test_page_colours_smooth_and_drag_and_drop(server, browser, tmp_path):
+    """A colour logo dropped on the page (a real drop event with a DataTransfer), in four
+    colours: exact, no seams, one swatch per colour; then smooth with ν = 1."""
+    import base64
+
+    logo = ROOT / "samples" / "colour" / "colour_logo_aa.png"
+    page = browser.new_page(viewport={"width": 1500, "height": 1000})
+    page.goto(server)
+    page.wait_for_selector("body[data-state=ready]")
+    page.fill("#colors", "4")
+    page.dispatch_event("#colors", "input")
+    assert page.is_disabled("#threshold") and page.is_disabled("#turdsize")
+
+    data = base64.b64encode(logo.read_bytes()).decode()
+    transfer = page.evaluate_handle(
+        """(data) => {
+            const bytes = Uint8Array.from(atob(data), (c) => c.charCodeAt(0));
+            const t = new DataTransfer();
+            t.items.add(new File([bytes], "logo.png", { type: "image/png" }));
+            return t;
+        }""",
+        data,
+    )
+    page.dispatch_event("#drop", "drop", {"dataTransfer": transfer})
+    page.wait_for_selector("body[data-state=done]", timeout=60_000)
+    assert not page.is_visible("#error")
+    assert page.inner_text("#differing") == "0"
+    assert page.inner_text("#seams") == "0"
+    swatches = page.eval_on_selector_all("#colours li", "items => items.map(i => i.textContent)")
+    assert 2 <= len(swatches) <= 4 and all(s.endswith(" 0 differing") for s in swatches), swatches
+    svg_text = page.evaluate("fetch(document.getElementById('out-svg').src).then(r => r.text())")
+    assert svg_text.count("<path") == len(swatches)
+    assert page.is_visible("#no-dec")
+    assert page.get_attribute("#dl-svg", "download") == "logo.svg"
+
+    page.fill("#smooth", "1")
+    page.evaluate("document.body.dataset.state = 'ready'")
+    page.click("#go")
+    page.wait_for_selector("body[data-state=done]", timeout=60_000)
+    assert page.inner_text("#seams") == "0"
+    assert page.inner_text("#beyond").startswith("0 (ν = 1"), page.inner_text("#beyond")
+    shot = os.environ.get("LAYERTRACE_SCREENSHOT")
+    shot = Path(shot).with_name(Path(shot).stem + "-colour.png") if shot else tmp_path / "c.png"
+    page.fill("#zoom", "3")
+    page.dispatch_event("#zoom", "input")
+    page.screenshot(path=str(shot), full_page=True)
+    print(f"\ncolour screenshot {shot}")
