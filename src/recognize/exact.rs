@@ -292,14 +292,10 @@ pub(crate) fn origin_in_hull(
     let (outcome, iterations) = gjk(&mut list, &mut simplex, &params);
     charge_exact(meter, &params, iterations, list.dim(), 0);
     match outcome {
-        GjkOutcome::OriginInside => Some((
-            simplex
-                .vertices
-                .iter()
-                .map(|v| v.tag.inlier as usize)
-                .collect(),
-            simplex.weights,
-        )),
+        GjkOutcome::OriginInside => {
+            let (tags, weights) = simplex.into_tags_and_weights();
+            Some((tags.iter().map(|t| t.inlier as usize).collect(), weights))
+        }
         _ => None,
     }
 }
@@ -400,15 +396,11 @@ pub(crate) fn decide_exactly(
     // Warm start from the float run's whole simplex (uniform weights, reduced exactly); if
     // its vertices are affinely dependent in exact arithmetic, from its first vertex.
     if !warm.is_empty() {
-        for t in warm {
-            simplex.push(support.vertex(t));
-        }
-        let w = BigRational::new(BigInt::from(1), BigInt::from(warm.len()));
-        simplex.weights = vec![w; warm.len()];
+        simplex = Simplex::uniform(warm.iter().map(|t| support.vertex(t)).collect());
         if !meter.try_charge(rational_solve_cost(n)) {
             return ExactDecision::OverBudget;
         }
-        if simplex.reduce_to_closest_point(0.0).is_err() {
+        if simplex.closest_point_to_origin(0.0).is_err() {
             simplex.reset_to(support.vertex(&warm[0]));
         }
     }
@@ -423,10 +415,10 @@ pub(crate) fn decide_exactly(
             let x = integer_direction(&direction);
             certificate_from_big(sets, &x, meter)
         }
-        GjkOutcome::OriginInside => ExactDecision::NotDescribed(
-            simplex.vertices.iter().map(|v| v.tag).collect(),
-            simplex.weights,
-        ),
+        GjkOutcome::OriginInside => {
+            let (tags, weights) = simplex.into_tags_and_weights();
+            ExactDecision::NotDescribed(tags, weights)
+        }
         GjkOutcome::Empty => ExactDecision::Described(
             vec![0; max_abs.len()],
             Extremes {

@@ -1,14 +1,18 @@
 //! The GJK variant (the paper's Algorithm 1): is the origin outside `conv(D)`?
 //!
+//! The steps carry the paper's names:
+//!
 //! ```text
-//! x ← a point of D (or the closest point of the warm-start simplex)
+//! x ← pick_point(D)                      a point of D, or the closest point of the
+//!                                        warm-start simplex            [`pick_point`]
 //! loop
 //!     if x = 0                          → the origin is in conv(simplex): not separable
-//!     s ← support point of D in direction −x   (argmin_{d∈D} x·d)
+//!     s ← support_point(D, −x)           argmin_{d∈D} x·d       [`SupportMap::support_point`]
 //!     if x·s > 0                        → x separates: every d ∈ D has x·d ≥ x·s > 0
 //!     if ‖x‖² − x·s ≤ ε‖x‖²             → x is already the closest point (numerically): stop
-//!     simplex ← simplex ∪ {s}
-//!     x ← closest point of the simplex to the origin; remove the vertices not needed
+//!     simplex ← add_vertex(simplex, s)                             [`Simplex::add_vertex`]
+//!     x ← closest_point_to_origin(simplex)             [`Simplex::closest_point_to_origin`]
+//!     simplex ← remove_vertices(simplex)    the vertices of weight 0 [`Simplex::remove_vertices`]
 //! ```
 //!
 //! In exact arithmetic every iteration strictly decreases `‖x‖` and no simplex repeats, so
@@ -64,14 +68,8 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
     params: &GjkParams,
 ) -> (GjkOutcome<T>, usize) {
     let dim = support.dim();
-    if simplex.is_empty() {
-        let any = vec![T::zero(); dim];
-        match support.support_point(&any) {
-            Some(v) => simplex.reset_to(v),
-            None => return (GjkOutcome::Empty, 0),
-        }
-    } else if simplex.reduce_to_closest_point(params.eps).is_err() {
-        return (GjkOutcome::Stalled, 0);
+    if let Err(outcome) = pick_point(support, simplex, params.eps) {
+        return (outcome, 0);
     }
     let mut previous = None::<T>;
     for iteration in 1..=params.max_iterations {
@@ -84,7 +82,7 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         }
         let xx = dot(&x, &x);
         let max_w = simplex
-            .vertices
+            .vertices()
             .iter()
             .map(|v| dot(&v.point, &v.point))
             .fold(T::zero(), |m, n| if n > m { n } else { m });
@@ -120,8 +118,9 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
             // or rounding hides progress.
             return (GjkOutcome::Stalled, iteration);
         }
-        simplex.push(s);
-        if simplex.len() > dim + 1 || simplex.reduce_to_closest_point(params.eps).is_err() {
+        simplex.add_vertex(s);
+        // closest_point_to_origin runs remove_vertices on the vertices it no longer needs.
+        if simplex.len() > dim + 1 || simplex.closest_point_to_origin(params.eps).is_err() {
             return (GjkOutcome::Stalled, iteration);
         }
         // n+1 affinely independent vertices, all with positive weight: the affine hull is the
@@ -132,6 +131,27 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         }
     }
     (GjkOutcome::Stalled, params.max_iterations)
+}
+
+/// pickPoint: the first `x`. An empty simplex starts from a point of `D` (the support
+/// point in any direction); a warm-start simplex from its own closest point to the origin.
+/// `Err` is the run's outcome when there is no start: `Empty` for an empty `D`, `Stalled`
+/// for a warm-start simplex that is (numerically) affinely dependent.
+fn pick_point<T: Scalar, S: SupportMap<T>>(
+    support: &mut S,
+    simplex: &mut Simplex<T>,
+    eps: f64,
+) -> Result<(), GjkOutcome<T>> {
+    if simplex.is_empty() {
+        let any = vec![T::zero(); support.dim()];
+        match support.support_point(&any) {
+            Some(v) => simplex.reset_to(v),
+            None => return Err(GjkOutcome::Empty),
+        }
+    } else if simplex.closest_point_to_origin(eps).is_err() {
+        return Err(GjkOutcome::Stalled);
+    }
+    Ok(())
 }
 
 #[cfg(test)]

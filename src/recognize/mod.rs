@@ -644,7 +644,7 @@ impl Recognizer {
         }
         // The float run could not prove its answer: decide in exact arithmetic.
         self.stats.exact_fallbacks += 1;
-        let warm: Vec<Tag> = self.simplex.vertices.iter().map(|v| v.tag).collect();
+        let warm: Vec<Tag> = self.simplex.tags();
         self.simplex.clear();
         let dec = decide_exactly(&sets, &warm, &self.max_abs, &mut self.meter);
         match dec {
@@ -716,7 +716,7 @@ fn float_decide(
         if diffs.len() < k {
             diffs.resize_with(k, Vec::new);
         }
-        for (d, v) in diffs.iter_mut().zip(&simplex.vertices) {
+        for (d, v) in diffs.iter_mut().zip(simplex.vertices()) {
             sets.difference_into(&v.tag, d);
         }
         k
@@ -728,9 +728,7 @@ fn float_decide(
         y: Vec::with_capacity(n),
     };
     // Warm start: rebuild the kept vertices in the current coordinates.
-    for v in simplex.vertices.iter_mut() {
-        *v = support.vertex(&v.tag);
-    }
+    simplex.rebuild(|tag| support.vertex(tag));
     let mut params = FLOAT_PARAMS;
     let mut converging = false;
     let mut corrections = 0;
@@ -788,21 +786,18 @@ fn float_decide(
                 }
                 match barycentric_signed(points) {
                     Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
-                        let tags = simplex.vertices.iter().map(|v| v.tag).collect();
-                        return Some(FloatAnswer::NotDescribed(tags, w));
+                        return Some(FloatAnswer::NotDescribed(simplex.tags(), w));
                     }
                     Some(w) if corrections < MAX_CORRECTIONS && simplex.len() > 1 => {
                         corrections += 1;
                         let worst = (0..w.len()).min_by(|&i, &j| w[i].cmp(&w[j])).unwrap_or(0);
-                        simplex.vertices.remove(worst);
-                        let k = simplex.vertices.len();
-                        simplex.weights = vec![1.0 / k as f64; k];
+                        simplex.drop_vertex(worst);
                     }
                     _ => {
                         // Decide on the simplex exactly: the origin in its hull is a witness;
                         // otherwise its exact closest point may separate all of D.
                         if let Some((used, weights)) = origin_in_hull(points, meter) {
-                            let tags = used.iter().map(|&i| simplex.vertices[i].tag).collect();
+                            let tags = used.iter().map(|&i| simplex.vertices()[i].tag).collect();
                             return Some(FloatAnswer::NotDescribed(tags, weights));
                         }
                         let a = closest_direction(points, meter)?;

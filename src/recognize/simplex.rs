@@ -2,9 +2,10 @@
 //!
 //! A simplex is a set of affinely independent points `w_0, …, w_k` of `D` (the support points
 //! kept so far) with barycentric weights `λ_i > 0`, `Σ λ_i = 1`; its current point is
-//! `x = Σ λ_i w_i`. [`Simplex::reduce_to_closest_point`] is the sub-algorithm "closest point
-//! of the simplex to the origin, removing the vertices that are not needed": Wolfe's minor
-//! cycle (P. Wolfe, *Finding the nearest point in a polytope*, Math. Programming 11, 1976),
+//! `x = Σ λ_i w_i`. [`Simplex::closest_point_to_origin`] is the paper's
+//! closestPointToOrigin with its removeVertices ([`Simplex::remove_vertices`]): the closest
+//! point of the simplex to the origin, the vertices that are not needed removed, by Wolfe's
+//! minor cycle (P. Wolfe, *Finding the nearest point in a polytope*, Math. Programming 11, 1976),
 //! which works in any dimension with `O(k³)` work instead of the `2^k` faces of Johnson's
 //! sub-algorithm:
 //!
@@ -43,9 +44,9 @@ impl<T> AsRef<[T]> for Vertex<T> {
 #[derive(Clone, Debug)]
 pub(crate) struct Simplex<T> {
     /// The vertices, affinely independent.
-    pub vertices: Vec<Vertex<T>>,
+    vertices: Vec<Vertex<T>>,
     /// Barycentric weights, positive, summing to one.
-    pub weights: Vec<T>,
+    weights: Vec<T>,
     /// Scratch space of the minor cycle, kept so that `f64` runs do not allocate.
     work: Work<T>,
 }
@@ -99,6 +100,55 @@ impl<T: Scalar> Simplex<T> {
         self.vertices.is_empty()
     }
 
+    /// The vertices.
+    pub fn vertices(&self) -> &[Vertex<T>] {
+        &self.vertices
+    }
+
+    /// Where the vertices came from, in order.
+    pub fn tags(&self) -> Vec<Tag> {
+        self.vertices.iter().map(|v| v.tag).collect()
+    }
+
+    /// The vertices' tags and their barycentric weights (positive, summing to one).
+    pub fn into_tags_and_weights(self) -> (Vec<Tag>, Vec<T>) {
+        (
+            self.vertices.into_iter().map(|v| v.tag).collect(),
+            self.weights,
+        )
+    }
+
+    /// A simplex of `vertices` with equal weights, not reduced (the caller runs
+    /// [`Simplex::closest_point_to_origin`]).
+    pub fn uniform(vertices: Vec<Vertex<T>>) -> Simplex<T> {
+        let k = vertices.len();
+        let w = T::one() / T::from_i64(k as i64);
+        Simplex {
+            weights: vec![w; k],
+            vertices,
+            work: Work::default(),
+        }
+    }
+
+    /// Rebuilds every vertex from its tag (the same points in other coordinates), keeping
+    /// the weights.
+    pub fn rebuild(&mut self, mut vertex: impl FnMut(&Tag) -> Vertex<T>) {
+        for v in self.vertices.iter_mut() {
+            *v = vertex(&v.tag);
+        }
+    }
+
+    /// Removes vertex `i` and spreads the weight equally over the others (a correction of
+    /// rounding, outside Algorithm 1: the caller reduces again).
+    pub fn drop_vertex(&mut self, i: usize) {
+        self.vertices.remove(i);
+        self.weights.remove(i);
+        let k = self.vertices.len();
+        if k > 0 {
+            self.weights = vec![T::one() / T::from_i64(k as i64); k];
+        }
+    }
+
     /// Removes every vertex.
     pub fn clear(&mut self) {
         self.vertices.clear();
@@ -123,8 +173,9 @@ impl<T: Scalar> Simplex<T> {
         Some(T::combination(&self.weights, &self.vertices, dim))
     }
 
-    /// Adds a support point with weight zero (the caller then reduces).
-    pub fn push(&mut self, v: Vertex<T>) {
+    /// addVertex: adds a support point with weight zero (the caller then runs
+    /// [`Simplex::closest_point_to_origin`]).
+    pub fn add_vertex(&mut self, v: Vertex<T>) {
         self.vertices.push(v);
         self.weights.push(T::zero());
     }
@@ -136,11 +187,12 @@ impl<T: Scalar> Simplex<T> {
         self.weights.push(T::one());
     }
 
-    /// Wolfe's minor cycle: moves the weights to the closest point of the simplex to the
-    /// origin and removes the vertices that are not needed (weight zero).
+    /// closestPointToOrigin, by Wolfe's minor cycle: moves the weights to the closest point
+    /// of the simplex to the origin, calling [`Simplex::remove_vertices`] on the vertices
+    /// whose weight vanished on the way.
     ///
     /// `eps` is the relative tolerance of `f64` runs (ignored by exact numbers).
-    pub fn reduce_to_closest_point(&mut self, eps: f64) -> Result<(), Degenerate> {
+    pub fn closest_point_to_origin(&mut self, eps: f64) -> Result<(), Degenerate> {
         let tiny = T::tolerance(&T::one(), eps);
         // Each pass removes at least one vertex, so at most len() passes.
         for _ in 0..=self.vertices.len() {
@@ -176,25 +228,32 @@ impl<T: Scalar> Simplex<T> {
             if let Some(i) = leaving {
                 self.weights[i] = T::zero();
             }
-            let mut i = 0;
-            while i < self.weights.len() {
-                if self.weights[i] <= tiny {
-                    self.weights.remove(i);
-                    self.vertices.remove(i);
-                } else {
-                    i += 1;
-                }
-            }
-            if self.vertices.is_empty() {
-                return Err(Degenerate);
-            }
-            // Renormalize (exact numbers already sum to one; floats drift).
-            let sum = self.weights.iter().fold(T::zero(), |s, l| s + l.clone());
-            for l in self.weights.iter_mut() {
-                *l = l.clone() / sum.clone();
-            }
+            self.remove_vertices(&tiny)?;
         }
         Err(Degenerate)
+    }
+
+    /// removeVertices: drops the vertices whose weight is at most `tiny` (zero for exact
+    /// numbers) and renormalizes the others' weights; `Degenerate` if none is left.
+    pub fn remove_vertices(&mut self, tiny: &T) -> Result<(), Degenerate> {
+        let mut i = 0;
+        while i < self.weights.len() {
+            if self.weights[i] <= *tiny {
+                self.weights.remove(i);
+                self.vertices.remove(i);
+            } else {
+                i += 1;
+            }
+        }
+        if self.vertices.is_empty() {
+            return Err(Degenerate);
+        }
+        // Renormalize (exact numbers already sum to one; floats drift).
+        let sum = self.weights.iter().fold(T::zero(), |s, l| s + l.clone());
+        for l in self.weights.iter_mut() {
+            *l = l.clone() / sum.clone();
+        }
+        Ok(())
     }
 }
 
@@ -380,15 +439,16 @@ mod tests {
     use crate::recognize::support::Tag;
 
     fn simplex_of(points: &[Vec<f64>]) -> Simplex<f64> {
-        let mut s = Simplex::default();
-        for (i, p) in points.iter().enumerate() {
-            s.push(Vertex {
-                point: p.clone(),
-                tag: Tag::explicit(i),
-            });
-        }
-        s.weights = vec![1.0 / points.len() as f64; points.len()];
-        s
+        Simplex::uniform(
+            points
+                .iter()
+                .enumerate()
+                .map(|(i, p)| Vertex {
+                    point: p.clone(),
+                    tag: Tag::explicit(i),
+                })
+                .collect(),
+        )
     }
 
     fn norm2(x: &[f64]) -> f64 {
@@ -406,17 +466,17 @@ mod tests {
     fn segment_and_triangle() {
         // Segment from (1,-1) to (1,1): closest point (1,0).
         let mut s = simplex_of(&[vec![1.0, -1.0], vec![1.0, 1.0]]);
-        s.reduce_to_closest_point(1e-12).unwrap();
+        s.closest_point_to_origin(1e-12).unwrap();
         let x = s.point(2).unwrap();
         assert_close(x[0], 1.0, 1e-12, "x");
         assert_close(x[1], 0.0, 1e-12, "y");
         // Segment whose closest point is an end: the other vertex is removed.
         let mut s = simplex_of(&[vec![1.0, 1.0], vec![2.0, 3.0]]);
-        s.reduce_to_closest_point(1e-12).unwrap();
+        s.closest_point_to_origin(1e-12).unwrap();
         assert_eq!(s.len(), 1);
         // Triangle around the origin: closest point is the origin itself.
         let mut s = simplex_of(&[vec![1.0, 0.0], vec![-1.0, 1.0], vec![-1.0, -1.0]]);
-        s.reduce_to_closest_point(1e-12).unwrap();
+        s.closest_point_to_origin(1e-12).unwrap();
         assert!(norm2(&s.point(2).unwrap()) < 1e-24);
         assert_eq!(s.len(), 3);
     }
@@ -434,7 +494,7 @@ mod tests {
             use num_rational::BigRational;
             let mut s: Simplex<BigRational> = Simplex::default();
             for (i, p) in raw.iter().enumerate() {
-                s.push(Vertex {
+                s.add_vertex(Vertex {
                     point: p
                         .iter()
                         .map(|&v| {
@@ -458,13 +518,13 @@ mod tests {
         let r = |v: i64| BigRational::from_i64(v);
         let mut s: Simplex<BigRational> = Simplex::default();
         for (i, p) in [[3, 1], [1, 3], [5, 5]].iter().enumerate() {
-            s.push(Vertex {
+            s.add_vertex(Vertex {
                 point: vec![r(p[0]), r(p[1])],
                 tag: Tag::explicit(i),
             });
         }
         s.weights = vec![BigRational::from_i64(1) / r(3); 3];
-        s.reduce_to_closest_point(0.0).unwrap();
+        s.closest_point_to_origin(0.0).unwrap();
         // Closest point of the triangle is (2, 2), the middle of the first edge.
         assert_eq!(s.point(2).unwrap(), vec![r(2), r(2)]);
         assert_eq!(s.len(), 2);
