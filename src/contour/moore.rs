@@ -1,0 +1,118 @@
+//! Moore-neighbour tracing: the default convention's borders, one per 8-connected
+//! component and per hole, each found by the flood fill of [`super::flood`].
+
+use super::flood::{flood, low_bits, Visited};
+use super::{fg, Contour};
+use crate::bitmap::Mask;
+use crate::pixel::Pixel;
+
+/// The eight neighbour offsets; increasing index turns clockwise on screen.
+const DIRS: [(i32, i32); 8] = [
+    (1, 0),   // 0 E
+    (1, 1),   // 1 SE
+    (0, 1),   // 2 S
+    (-1, 1),  // 3 SW
+    (-1, 0),  // 4 W
+    (-1, -1), // 5 NW
+    (0, -1),  // 6 N
+    (1, -1),  // 7 NE
+];
+const DIR_S: usize = 2;
+const DIR_N: usize = 6;
+
+#[inline]
+fn offset(p: Pixel, d: usize) -> Pixel {
+    let (dx, dy) = DIRS[d % 8];
+    Pixel::new(p.x + dx, p.y + dy)
+}
+
+#[inline]
+fn dir_of(dx: i32, dy: i32) -> usize {
+    DIRS.iter().position(|&o| o == (dx, dy)).unwrap_or(0)
+}
+
+/// One Moore step: at `p`, whose neighbour in direction `back` is background in the region
+/// being followed, sweep the neighbours counter-clockwise on screen starting after `back`;
+/// the first foreground one is the next pixel. Returns it with the direction, seen from it,
+/// of the background cell examined just before it (which becomes the next `back`).
+#[inline]
+fn moore_step(mask: &Mask, p: Pixel, back: usize) -> Option<(Pixel, usize)> {
+    for k in 1..8 {
+        let d = (back + 8 - k) % 8;
+        let q = offset(p, d);
+        if fg(mask, q) {
+            let c = offset(p, d + 1);
+            return Some((q, dir_of(c.x - q.x, c.y - q.y)));
+        }
+    }
+    None
+}
+
+/// Traces the closed border through `p0`, starting with background direction `back0`
+/// (a background neighbour of `p0` in the region followed).
+///
+/// Stops when the first move `p0 -> p1` is about to be repeated: the state after a move is a
+/// function of the move, so this is exactly one period (Jacob's criterion in move form; a
+/// plain "back at p0" test would stop early on thin shapes).
+fn moore_trace(mask: &Mask, p0: Pixel, back0: usize) -> Vec<Pixel> {
+    let mut points = vec![p0];
+    let Some((p1, mut back)) = moore_step(mask, p0, back0) else {
+        return points;
+    };
+    let mut cur = p1;
+    // A pixel is visited at most once per run of background in its 8-neighbourhood (at most
+    // four runs), so this bound is never reached; it only guarantees termination.
+    let limit = 4 * u64::from(mask.width()) * u64::from(mask.height()) + 1;
+    // `moore_step` cannot fail here: `cur` was entered from a foreground neighbour.
+    while let Some((next, nb)) = moore_step(mask, cur, back) {
+        if (cur == p0 && next == p1) || points.len() as u64 > limit {
+            break;
+        }
+        points.push(cur);
+        cur = next;
+        back = nb;
+    }
+    points
+}
+
+/// Traces [`super::Convention::Default`].
+pub(super) fn trace_default(mask: &Mask) -> Vec<Contour> {
+    let mut visited = Visited(Mask::new(mask.width(), mask.height()));
+    let mut stack = Vec::new();
+    let mut out = Vec::new();
+    let w = mask.width() as usize;
+    for y in 0..mask.height() as usize {
+        let base = y * w;
+        let mut x = 0;
+        while x < w {
+            // Skip visited pixels 64 at a time.
+            let k = (w - x).min(64);
+            let free = !visited.0.bits_at(base + x) & low_bits(k);
+            if free == 0 {
+                x += k;
+                continue;
+            }
+            x += free.trailing_zeros() as usize;
+            let p = Pixel::new(x as i32, y as i32);
+            let touches = flood(mask, &mut visited, p, &mut stack);
+            if fg(mask, p) {
+                // All of N, NW, NE and W precede p in raster order: background.
+                out.push(Contour {
+                    points: moore_trace(mask, p, DIR_N),
+                    hole: false,
+                    closed: true,
+                });
+            } else if !touches {
+                // A hole: the pixel above its first pixel is foreground (y > 0, and a
+                // background pixel there would belong to the same hole, earlier).
+                out.push(Contour {
+                    points: moore_trace(mask, Pixel::new(p.x, p.y - 1), DIR_S),
+                    hole: true,
+                    closed: true,
+                });
+            }
+            x += 1;
+        }
+    }
+    out
+}
