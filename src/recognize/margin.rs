@@ -3,11 +3,12 @@
 //! equations. Neither is a decision of the recognizer; certificates are re-checked exactly.
 
 use super::exact::{reduce_by_gcd, verify_certificate};
+use super::float::{power_of_two_scale, FLOAT_PARAMS};
 use super::gjk::{gjk, GjkOutcome, GjkParams};
 use super::lifted::LiftedSet;
 use super::simplex::Simplex;
 use super::support::{FloatSupport, Sets, SupportMap};
-use super::{conditioning::LinearMap, power_of_two_scale, Certificate, FLOAT_PARAMS};
+use super::{conditioning::LinearMap, Certificate};
 use crate::model::Basis;
 
 /// Lifts `points − origin` into a set, raising `max_abs` to bound the liftings. Returns

@@ -54,206 +54,30 @@ mod bareiss;
 mod budget;
 mod conditioning;
 mod exact;
+mod float;
 mod gjk;
 mod lifted;
 mod margin;
+mod proof;
 mod scalar;
 mod simplex;
+mod stats;
 mod support;
 
+pub use proof::{Certificate, Outcome, Side, Witness};
+pub use stats::Stats;
+
 use crate::model::Basis;
-use budget::{direct_solve_cost, scan_cost, Meter};
+use budget::{scan_cost, Meter};
 use conditioning::{LinearMap, Moments};
-use exact::{
-    barycentric_signed, closest_direction, decide_exactly, dot_i128, origin_in_hull, reduce_by_gcd,
-    round_to_certificate, verify_certificate, ExactDecision, Extremes,
-};
-use gjk::{gjk, GjkOutcome, GjkParams};
+use exact::{decide_exactly, dot_i128, verify_certificate, ExactDecision, Extremes};
+use float::{float_decide, power_of_two_scale, FloatAnswer};
 use lifted::LiftedSet;
 pub use margin::{max_margin_direction, small_certificate};
 use num_rational::BigRational;
-use num_traits::ToPrimitive;
 use simplex::Simplex;
 use std::sync::Arc;
-use support::{FloatSupport, Sets, SupportMap, Tag};
-
-/// Which outlier set a point belongs to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Side {
-    /// `S⁺`: strictly above the layer (`a·F > upper`).
-    Upper,
-    /// `S⁻`: strictly below the layer (`a·F < lower`).
-    Lower,
-}
-
-/// Proof that a set is described: the integer layer `lower ≤ a·F(p − origin) ≤ upper`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Certificate {
-    /// The local origin the points are taken relative to.
-    pub origin: Vec<i64>,
-    /// `a`, one integer per basis function (the constant's coefficient is zero).
-    pub coefficients: Vec<i64>,
-    /// `min_S a·F`.
-    pub lower: i128,
-    /// `max_S a·F`.
-    pub upper: i128,
-    /// `min_{S⁺} a·F` (`> upper`), `None` if `S⁺` is empty.
-    pub above: Option<i128>,
-    /// `max_{S⁻} a·F` (`< lower`), `None` if `S⁻` is empty.
-    pub below: Option<i128>,
-}
-
-impl Certificate {
-    /// `a·F(p − origin)` exactly, or `None` on overflow or dimension mismatch.
-    pub fn value(&self, basis: &dyn Basis, p: &[i64]) -> Option<i128> {
-        if p.len() != self.origin.len() || self.coefficients.len() != basis.dim() {
-            return None;
-        }
-        let rel: Vec<i64> = p
-            .iter()
-            .zip(&self.origin)
-            .map(|(a, b)| a.checked_sub(*b))
-            .collect::<Option<_>>()?;
-        let mut f = vec![0; basis.dim()];
-        basis.lift(&rel, &mut f)?;
-        dot_i128(&self.coefficients, &f)
-    }
-
-    /// True when every coefficient is zero (only possible when there are no outliers).
-    pub fn is_zero(&self) -> bool {
-        self.coefficients.iter().all(|&c| c == 0)
-    }
-}
-
-/// Proof that a set is not described: points `d_k = ±(F(outlier) − F(inlier))` of `D` and
-/// exact weights `λ_k ≥ 0`, `Σλ = 1`, with `Σ λ_k d_k = 0`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Witness {
-    /// The local origin: `F` is evaluated at `p − origin`.
-    pub origin: Vec<i64>,
-    /// `(inlier, outlier, side)` of each point of `D` used, absolute coordinates.
-    pub pairs: Vec<(Vec<i64>, Vec<i64>, Side)>,
-    weights: Vec<BigRational>,
-}
-
-impl Witness {
-    /// The weights, as `f64` approximations (the exact ones are checked by
-    /// [`Witness::verify`]).
-    pub fn weights(&self) -> Vec<f64> {
-        self.weights
-            .iter()
-            .map(|w| w.to_f64().unwrap_or(f64::NAN))
-            .collect()
-    }
-
-    /// The exact weights `λ_k`, in the order of [`Witness::pairs`].
-    pub fn exact_weights(&self) -> &[BigRational] {
-        &self.weights
-    }
-
-    /// Re-checks the witness exactly: weights non-negative summing to one, and the weighted
-    /// sum of the differences zero.
-    pub fn verify(&self, basis: &dyn Basis) -> bool {
-        use num_traits::{One, Zero};
-        if self.pairs.is_empty() || self.pairs.len() != self.weights.len() {
-            return false;
-        }
-        let n = basis.dim();
-        let mut sum = vec![BigRational::zero(); n];
-        let mut total = BigRational::zero();
-        let (mut fi, mut fo) = (vec![0; n], vec![0; n]);
-        let rel = |p: &[i64]| -> Vec<i64> {
-            p.iter()
-                .zip(&self.origin)
-                .map(|(a, b)| a.wrapping_sub(*b))
-                .collect()
-        };
-        for ((inl, out, side), w) in self.pairs.iter().zip(&self.weights) {
-            if *w < BigRational::zero()
-                || basis.lift(&rel(inl), &mut fi).is_none()
-                || basis.lift(&rel(out), &mut fo).is_none()
-            {
-                return false;
-            }
-            total += w;
-            for k in 0..n {
-                let d = match side {
-                    Side::Upper => fo[k] as i128 - fi[k] as i128,
-                    Side::Lower => fi[k] as i128 - fo[k] as i128,
-                };
-                sum[k] += w * BigRational::from_integer(d.into());
-            }
-        }
-        total == BigRational::one() && sum.iter().all(Zero::is_zero)
-    }
-}
-
-/// The answer of [`Recognizer::recognize`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Outcome {
-    /// A verified [`Certificate`] exists ([`Recognizer::certificate`]).
-    Described,
-    /// A verified [`Witness`] exists ([`Recognizer::witness`]).
-    NotDescribed,
-    /// Neither could be established (exact guard cap, or liftings overflowing `i64`).
-    Undecided,
-    /// Not decided within the work limit ([`Recognizer::set_work_limit`]).
-    OverBudget,
-}
-
-/// Counters of the work done, for benchmarks and reports.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Stats {
-    /// Calls to [`Recognizer::recognize`].
-    pub queries: u64,
-    /// Queries answered by the previous certificate alone.
-    pub certificate_reused: u64,
-    /// Float GJK runs.
-    pub float_runs: u64,
-    /// Float GJK iterations, in all.
-    pub float_iterations: u64,
-    /// Queries whose float runs stalled in scaled coordinates and went on in whitened ones
-    /// (the piece's later queries then try whitened coordinates first).
-    pub whitened: u64,
-    /// Queries that needed the exact fallback.
-    pub exact_fallbacks: u64,
-    /// Queries answered [`Outcome::Undecided`].
-    pub undecided: u64,
-    /// Queries answered [`Outcome::OverBudget`].
-    pub over_budget: u64,
-    /// Work units spent (see [`Recognizer::set_work_limit`]).
-    pub work: u64,
-}
-
-impl Stats {
-    /// Adds another set of counters.
-    pub fn add(&mut self, o: &Stats) {
-        self.queries += o.queries;
-        self.certificate_reused += o.certificate_reused;
-        self.float_runs += o.float_runs;
-        self.float_iterations += o.float_iterations;
-        self.whitened += o.whitened;
-        self.exact_fallbacks += o.exact_fallbacks;
-        self.undecided += o.undecided;
-        self.over_budget += o.over_budget;
-        self.work += o.work;
-    }
-
-    /// The counters of the work done since `earlier` (counters of the same recognizer).
-    pub fn since(&self, earlier: &Stats) -> Stats {
-        Stats {
-            queries: self.queries - earlier.queries,
-            certificate_reused: self.certificate_reused - earlier.certificate_reused,
-            float_runs: self.float_runs - earlier.float_runs,
-            float_iterations: self.float_iterations - earlier.float_iterations,
-            whitened: self.whitened - earlier.whitened,
-            exact_fallbacks: self.exact_fallbacks - earlier.exact_fallbacks,
-            undecided: self.undecided - earlier.undecided,
-            over_budget: self.over_budget - earlier.over_budget,
-            work: self.work - earlier.work,
-        }
-    }
-}
+use support::{Sets, Tag};
 
 /// The incremental recognizer: owns the three sets, the scratch simplex and the last
 /// certificate.
@@ -284,18 +108,6 @@ pub struct Recognizer {
     /// Work since the last reset, and its limit.
     meter: Meter,
 }
-
-/// Float runs per query at most (separations, convergence, corrections).
-const MAX_FLOAT_RUNS: usize = 8;
-/// Exact corrections of a float simplex per query at most.
-const MAX_CORRECTIONS: usize = 5;
-
-const FLOAT_PARAMS: GjkParams = GjkParams {
-    eps: 1e-12,
-    eps_zero: 1e-24,
-    max_iterations: 1000,
-    first_separation: true,
-};
 
 impl Recognizer {
     /// A recognizer for `basis`, with points taken relative to `origin`.
@@ -681,153 +493,6 @@ impl Recognizer {
         self.cert_valid = false;
         Outcome::NotDescribed
     }
-}
-
-/// A decision of the float runs, already checked exactly.
-enum FloatAnswer {
-    /// A verified integer certificate.
-    Described(Vec<i64>, Extremes),
-    /// Tags of points of `D` and exact weights with `Σ λ d = 0`.
-    NotDescribed(Vec<Tag>, Vec<BigRational>),
-}
-
-/// Float runs of the GJK variant on `map·D`, warm-started from `simplex`, each answer checked
-/// exactly; `None` when none could be proven.
-///
-/// A float run that sees the origin inside a simplex the exact check puts it outside of drops
-/// the vertex with the most negative exact barycentric weight and goes on (a few times).
-/// `diffs` is scratch space for the simplex's exact points.
-// The recognizer's fields, borrowed one by one (the closure in `solve` holds the others).
-#[allow(clippy::too_many_arguments)]
-fn float_decide(
-    sets: Sets<'_>,
-    map: &LinearMap,
-    simplex: &mut Simplex<f64>,
-    max_abs: &[i64],
-    stats: &mut Stats,
-    thorough: bool,
-    diffs: &mut Vec<Vec<i64>>,
-    meter: &mut Meter,
-) -> Option<FloatAnswer> {
-    // The exact points of D at the simplex's vertices, into `diffs` (allocations reused).
-    // (Only the first `simplex.len()` entries are meaningful; longer is kept for reuse.)
-    let exact_points = |simplex: &Simplex<f64>, diffs: &mut Vec<Vec<i64>>| -> usize {
-        let k = simplex.len();
-        if diffs.len() < k {
-            diffs.resize_with(k, Vec::new);
-        }
-        for (d, v) in diffs.iter_mut().zip(simplex.vertices()) {
-            sets.difference_into(&v.tag, d);
-        }
-        k
-    };
-    let n = map.dim();
-    let mut support = FloatSupport {
-        sets,
-        map,
-        y: Vec::with_capacity(n),
-    };
-    // Warm start: rebuild the kept vertices in the current coordinates.
-    simplex.rebuild(|tag| support.vertex(tag));
-    let mut params = FLOAT_PARAMS;
-    let mut converging = false;
-    let mut corrections = 0;
-    // A float iteration: one support scan and a small float solve.
-    let per_iteration = scan_cost(&sets) + (n as u64 + 1).pow(3);
-    let solve_cost = direct_solve_cost(n);
-    for _ in 0..MAX_FLOAT_RUNS {
-        if meter.exhausted() {
-            return None;
-        }
-        let (cap, limited) = meter.iterations(per_iteration, FLOAT_PARAMS.max_iterations);
-        params.max_iterations = cap;
-        let (outcome, iterations) = gjk(&mut support, simplex, &params);
-        stats.float_iterations += iterations as u64;
-        meter.charge(iterations as u64 * per_iteration);
-        if limited && iterations >= cap {
-            meter.exhaust();
-            if matches!(outcome, GjkOutcome::Stalled) {
-                return None;
-            }
-        }
-        match outcome {
-            GjkOutcome::Separated {
-                direction,
-                margin,
-                converged,
-            } => {
-                let y = map.pull_back(&direction);
-                let k = exact_points(simplex, diffs);
-                let tight = &diffs[..k];
-                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, tight, meter)
-                {
-                    return Some(FloatAnswer::Described(a, e));
-                }
-                if converged || converging {
-                    return None;
-                }
-                // Converge to the largest-margin direction, then round again.
-                params.first_separation = false;
-                converging = true;
-            }
-            GjkOutcome::Stalled if iterations == 0 => {
-                // The warm-start simplex is degenerate in these coordinates: start afresh.
-                simplex.clear();
-            }
-            GjkOutcome::Stalled if !thorough => return None,
-            GjkOutcome::OriginInside | GjkOutcome::Stalled => {
-                if simplex.len() > n + 1 {
-                    return None;
-                }
-                let k = exact_points(simplex, diffs);
-                let points = &diffs[..k];
-                if !meter.try_charge(solve_cost) {
-                    return None;
-                }
-                match barycentric_signed(points) {
-                    Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
-                        return Some(FloatAnswer::NotDescribed(simplex.tags(), w));
-                    }
-                    Some(w) if corrections < MAX_CORRECTIONS && simplex.len() > 1 => {
-                        corrections += 1;
-                        let worst = (0..w.len()).min_by(|&i, &j| w[i].cmp(&w[j])).unwrap_or(0);
-                        simplex.drop_vertex(worst);
-                    }
-                    _ => {
-                        // Decide on the simplex exactly: the origin in its hull is a witness;
-                        // otherwise its exact closest point may separate all of D.
-                        if let Some((used, weights)) = origin_in_hull(points, meter) {
-                            let tags = used.iter().map(|&i| simplex.vertices()[i].tag).collect();
-                            return Some(FloatAnswer::NotDescribed(tags, weights));
-                        }
-                        let a = closest_direction(points, meter)?;
-                        meter.charge(scan_cost(&sets));
-                        let e = verify_certificate(&sets, &a)?;
-                        let (a, e) = reduce_by_gcd(a, e);
-                        return Some(FloatAnswer::Described(a, e));
-                    }
-                }
-            }
-            GjkOutcome::Empty => return None,
-        }
-    }
-    None
-}
-
-/// Powers of two bringing every lifted coordinate near magnitude one (`max_abs[i]` bounds
-/// `|F_i|`): separation is invariant under this diagonal map, and the float solves are far
-/// better conditioned.
-fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
-    max_abs
-        .iter()
-        .map(|&m| {
-            if m > 0 {
-                (-(m as f64).log2().ceil()).exp2()
-            } else {
-                1.0
-            }
-        })
-        .collect()
 }
 
 /// Decides one recognition problem from scratch (convenience for tests and one-off use).

@@ -1,0 +1,173 @@
+//! The float runs of the GJK variant and their exact checks: the recognizer's first try at
+//! every query, in scaled or whitened coordinates, warm-started from the last simplex.
+
+use super::budget::{direct_solve_cost, scan_cost, Meter};
+use super::conditioning::LinearMap;
+use super::exact::{
+    barycentric_signed, closest_direction, origin_in_hull, reduce_by_gcd, round_to_certificate,
+    verify_certificate, Extremes,
+};
+use super::gjk::{gjk, GjkOutcome, GjkParams};
+use super::simplex::Simplex;
+use super::support::{FloatSupport, Sets, SupportMap, Tag};
+use super::Stats;
+use num_rational::BigRational;
+
+/// Float runs per query at most (separations, convergence, corrections).
+const MAX_FLOAT_RUNS: usize = 8;
+/// Exact corrections of a float simplex per query at most.
+const MAX_CORRECTIONS: usize = 5;
+
+pub(super) const FLOAT_PARAMS: GjkParams = GjkParams {
+    eps: 1e-12,
+    eps_zero: 1e-24,
+    max_iterations: 1000,
+    first_separation: true,
+};
+
+/// A decision of the float runs, already checked exactly.
+pub(super) enum FloatAnswer {
+    /// A verified integer certificate.
+    Described(Vec<i64>, Extremes),
+    /// Tags of points of `D` and exact weights with `Σ λ d = 0`.
+    NotDescribed(Vec<Tag>, Vec<BigRational>),
+}
+
+/// Float runs of the GJK variant on `map·D`, warm-started from `simplex`, each answer checked
+/// exactly; `None` when none could be proven.
+///
+/// A float run that sees the origin inside a simplex the exact check puts it outside of drops
+/// the vertex with the most negative exact barycentric weight and goes on (a few times).
+/// `diffs` is scratch space for the simplex's exact points.
+// The recognizer's fields, borrowed one by one (the closure in `solve` holds the others).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn float_decide(
+    sets: Sets<'_>,
+    map: &LinearMap,
+    simplex: &mut Simplex<f64>,
+    max_abs: &[i64],
+    stats: &mut Stats,
+    thorough: bool,
+    diffs: &mut Vec<Vec<i64>>,
+    meter: &mut Meter,
+) -> Option<FloatAnswer> {
+    // The exact points of D at the simplex's vertices, into `diffs` (allocations reused).
+    // (Only the first `simplex.len()` entries are meaningful; longer is kept for reuse.)
+    let exact_points = |simplex: &Simplex<f64>, diffs: &mut Vec<Vec<i64>>| -> usize {
+        let k = simplex.len();
+        if diffs.len() < k {
+            diffs.resize_with(k, Vec::new);
+        }
+        for (d, v) in diffs.iter_mut().zip(simplex.vertices()) {
+            sets.difference_into(&v.tag, d);
+        }
+        k
+    };
+    let n = map.dim();
+    let mut support = FloatSupport {
+        sets,
+        map,
+        y: Vec::with_capacity(n),
+    };
+    // Warm start: rebuild the kept vertices in the current coordinates.
+    simplex.rebuild(|tag| support.vertex(tag));
+    let mut params = FLOAT_PARAMS;
+    let mut converging = false;
+    let mut corrections = 0;
+    // A float iteration: one support scan and a small float solve.
+    let per_iteration = scan_cost(&sets) + (n as u64 + 1).pow(3);
+    let solve_cost = direct_solve_cost(n);
+    for _ in 0..MAX_FLOAT_RUNS {
+        if meter.exhausted() {
+            return None;
+        }
+        let (cap, limited) = meter.iterations(per_iteration, FLOAT_PARAMS.max_iterations);
+        params.max_iterations = cap;
+        let (outcome, iterations) = gjk(&mut support, simplex, &params);
+        stats.float_iterations += iterations as u64;
+        meter.charge(iterations as u64 * per_iteration);
+        if limited && iterations >= cap {
+            meter.exhaust();
+            if matches!(outcome, GjkOutcome::Stalled) {
+                return None;
+            }
+        }
+        match outcome {
+            GjkOutcome::Separated {
+                direction,
+                margin,
+                converged,
+            } => {
+                let y = map.pull_back(&direction);
+                let k = exact_points(simplex, diffs);
+                let tight = &diffs[..k];
+                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, tight, meter)
+                {
+                    return Some(FloatAnswer::Described(a, e));
+                }
+                if converged || converging {
+                    return None;
+                }
+                // Converge to the largest-margin direction, then round again.
+                params.first_separation = false;
+                converging = true;
+            }
+            GjkOutcome::Stalled if iterations == 0 => {
+                // The warm-start simplex is degenerate in these coordinates: start afresh.
+                simplex.clear();
+            }
+            GjkOutcome::Stalled if !thorough => return None,
+            GjkOutcome::OriginInside | GjkOutcome::Stalled => {
+                if simplex.len() > n + 1 {
+                    return None;
+                }
+                let k = exact_points(simplex, diffs);
+                let points = &diffs[..k];
+                if !meter.try_charge(solve_cost) {
+                    return None;
+                }
+                match barycentric_signed(points) {
+                    Some(w) if w.iter().all(|v| !num_traits::Signed::is_negative(v)) => {
+                        return Some(FloatAnswer::NotDescribed(simplex.tags(), w));
+                    }
+                    Some(w) if corrections < MAX_CORRECTIONS && simplex.len() > 1 => {
+                        corrections += 1;
+                        let worst = (0..w.len()).min_by(|&i, &j| w[i].cmp(&w[j])).unwrap_or(0);
+                        simplex.drop_vertex(worst);
+                    }
+                    _ => {
+                        // Decide on the simplex exactly: the origin in its hull is a witness;
+                        // otherwise its exact closest point may separate all of D.
+                        if let Some((used, weights)) = origin_in_hull(points, meter) {
+                            let tags = used.iter().map(|&i| simplex.vertices()[i].tag).collect();
+                            return Some(FloatAnswer::NotDescribed(tags, weights));
+                        }
+                        let a = closest_direction(points, meter)?;
+                        meter.charge(scan_cost(&sets));
+                        let e = verify_certificate(&sets, &a)?;
+                        let (a, e) = reduce_by_gcd(a, e);
+                        return Some(FloatAnswer::Described(a, e));
+                    }
+                }
+            }
+            GjkOutcome::Empty => return None,
+        }
+    }
+    None
+}
+
+/// Powers of two bringing every lifted coordinate near magnitude one (`max_abs[i]` bounds
+/// `|F_i|`): separation is invariant under this diagonal map, and the float solves are far
+/// better conditioned.
+pub(super) fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
+    max_abs
+        .iter()
+        .map(|&m| {
+            if m > 0 {
+                (-(m as f64).log2().ceil()).exp2()
+            } else {
+                1.0
+            }
+        })
+        .collect()
+}
