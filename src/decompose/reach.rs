@@ -76,14 +76,7 @@ impl<'a> Reach<'a> {
             hazard: hazards(points, closed, rule),
             greedy: Vec::new(),
             window: Window::new(points, rule),
-            certificate: Certificate {
-                origin: vec![0; 2],
-                coefficients: vec![0; rec.basis().dim()],
-                lower: 0,
-                upper: 0,
-                above: None,
-                below: None,
-            },
+            certificate: Certificate::zero(vec![0; 2], rec.basis().dim()),
         };
         let mut w = Window::new(points, rule);
         let mut next_greedy = 0;

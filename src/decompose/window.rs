@@ -126,14 +126,7 @@ impl<'a> Window<'a> {
             Outcome::Described => rec.certificate(),
             _ => None,
         }
-        .unwrap_or_else(|| Certificate {
-            origin: p.to_vec(),
-            coefficients: vec![0; rec.basis().dim()],
-            lower: 0,
-            upper: 0,
-            above: None,
-            below: None,
-        })
+        .unwrap_or_else(|| Certificate::zero(p.to_vec(), rec.basis().dim()))
     }
 
     /// Appends the point after `last`, and tells `rec` (if given) of the sets' changes: the

@@ -6,6 +6,7 @@ use super::exact::{reduce_by_gcd, verify_certificate};
 use super::float::{power_of_two_scale, FLOAT_PARAMS};
 use super::gjk::{gjk, GjkOutcome, GjkParams};
 use super::lifted::LiftedSet;
+use super::relative::relative_into;
 use super::simplex::Simplex;
 use super::support::{FloatSupport, Sets, SupportMap};
 use super::{conditioning::LinearMap, Certificate};
@@ -28,9 +29,7 @@ fn lift_points<P: AsRef<[i64]>>(
         if p.len() != pd || origin.len() != pd {
             return None;
         }
-        for (r, (a, b)) in rel.iter_mut().zip(p.iter().zip(origin)) {
-            *r = a.checked_sub(*b)?;
-        }
+        relative_into(p, origin, &mut rel)?;
         basis.lift(&rel, &mut f)?;
         for (m, v) in max_abs.iter_mut().zip(&f) {
             *m = (*m).max(v.saturating_abs());

@@ -59,6 +59,7 @@ mod gjk;
 mod lifted;
 mod margin;
 mod proof;
+mod relative;
 mod scalar;
 mod simplex;
 mod stats;
@@ -75,6 +76,7 @@ use float::{float_decide, power_of_two_scale, FloatAnswer};
 use lifted::LiftedSet;
 pub use margin::{max_margin_direction, small_certificate};
 use num_rational::BigRational;
+use relative::{relative, relative_into};
 use simplex::Simplex;
 use std::sync::Arc;
 use support::{Sets, Tag};
@@ -204,11 +206,8 @@ impl Recognizer {
     /// Lifts `p − origin` into `self.lift`; false on overflow.
     fn lift_point(&mut self, p: &[i64]) -> bool {
         debug_assert_eq!(p.len(), self.origin.len());
-        for ((r, a), b) in self.rel.iter_mut().zip(p).zip(&self.origin) {
-            match a.checked_sub(*b) {
-                Some(v) => *r = v,
-                None => return false,
-            }
+        if relative_into(p, &self.origin, &mut self.rel).is_none() {
+            return false;
         }
         if self.basis.lift(&self.rel, &mut self.lift).is_none() {
             return false;
@@ -275,11 +274,10 @@ impl Recognizer {
     /// recomputed exactly). The warm-start simplex is dropped, since its vertices name
     /// outliers by index.
     pub fn remove_outlier(&mut self, p: &[i64], side: Side) -> bool {
-        let rel: Vec<i64> = p
-            .iter()
-            .zip(&self.origin)
-            .map(|(a, b)| a.wrapping_sub(*b))
-            .collect();
+        // A point too far from the origin to be lifted was never added.
+        let Some(rel) = relative(p, &self.origin) else {
+            return false;
+        };
         let set = match side {
             Side::Upper => &mut self.upper,
             Side::Lower => &mut self.lower,

@@ -2,6 +2,7 @@
 //! (exact weights putting the origin in the hull of `D`), and the [`Outcome`] that says which.
 
 use super::exact::dot_i128;
+use super::relative::relative;
 use crate::model::Basis;
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
@@ -33,16 +34,25 @@ pub struct Certificate {
 }
 
 impl Certificate {
+    /// The zero function's layer `0 ≤ 0 ≤ 0` at `origin`, over a basis of `dim` functions:
+    /// what describes any set without outliers.
+    pub fn zero(origin: Vec<i64>, dim: usize) -> Certificate {
+        Certificate {
+            origin,
+            coefficients: vec![0; dim],
+            lower: 0,
+            upper: 0,
+            above: None,
+            below: None,
+        }
+    }
+
     /// `a·F(p − origin)` exactly, or `None` on overflow or dimension mismatch.
     pub fn value(&self, basis: &dyn Basis, p: &[i64]) -> Option<i128> {
         if p.len() != self.origin.len() || self.coefficients.len() != basis.dim() {
             return None;
         }
-        let rel: Vec<i64> = p
-            .iter()
-            .zip(&self.origin)
-            .map(|(a, b)| a.checked_sub(*b))
-            .collect::<Option<_>>()?;
+        let rel = relative(p, &self.origin)?;
         let mut f = vec![0; basis.dim()];
         basis.lift(&rel, &mut f)?;
         dot_i128(&self.coefficients, &f)
@@ -91,16 +101,14 @@ impl Witness {
         let mut sum = vec![BigRational::zero(); n];
         let mut total = BigRational::zero();
         let (mut fi, mut fo) = (vec![0; n], vec![0; n]);
-        let rel = |p: &[i64]| -> Vec<i64> {
-            p.iter()
-                .zip(&self.origin)
-                .map(|(a, b)| a.wrapping_sub(*b))
-                .collect()
-        };
         for ((inl, out, side), w) in self.pairs.iter().zip(&self.weights) {
+            let (Some(ri), Some(ro)) = (relative(inl, &self.origin), relative(out, &self.origin))
+            else {
+                return false;
+            };
             if *w < BigRational::zero()
-                || basis.lift(&rel(inl), &mut fi).is_none()
-                || basis.lift(&rel(out), &mut fo).is_none()
+                || basis.lift(&ri, &mut fi).is_none()
+                || basis.lift(&ro, &mut fo).is_none()
             {
                 return false;
             }
