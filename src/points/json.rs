@@ -351,16 +351,17 @@ fn or_null<T: fmt::Display>(v: Option<T>) -> String {
 /// ```text
 ///  "thinnest": true, "normalisation": "max-abs", "thickness": "6/7",
 ///  "layer": {"coefficients": [-3, 7, 0], "lower": -6, "upper": 0, "above": null, "below": null},
-///  "programs": {"solved": 2, "pruned": 0, "pivots": 9, "rounds": 4, "points": 20},
+///  "programs": {"started": 2, "pruned": 0, "pivots": 9, "rounds": 4, "points": 20},
 /// ```
 ///
 /// and no `local`. The thickness is `(upper − lower) / max_i |coefficients_i|` (the
 /// constant's coefficient excluded: `"normalisation": "max-abs"`, the L∞ norm), an exact
 /// fraction `p/q` (or an integer), the least over every layer of the model holding the
-/// inliers; the coefficients have no common divisor. `programs` counts the linear programs
-/// solved (one per non-constant basis function), those stopped early, the simplex pivots,
-/// the rounds of constraint generation and the distinct lifted inliers. The recognizer is not
-/// run: its `stats` are zero.
+/// inliers, in the points' own coordinates; the coefficients have no common divisor and the
+/// largest in absolute value is positive. `programs` counts the linear programs started (one
+/// per non-constant basis function), those stopped early (already no thinner than the best),
+/// the simplex pivots, the rounds of constraint generation and the distinct lifted inliers.
+/// The recognizer is not run: its `stats` are zero.
 pub fn recognition_json(r: &PointsRecognition) -> String {
     let quote = |s: &str| serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into());
     let mut s = String::new();
@@ -408,7 +409,7 @@ pub fn recognition_json(r: &PointsRecognition) -> String {
             let w = &t.work;
             let _ = write!(
                 s,
-                " \"result\": \"described\",\n \"thinnest\": true, \"normalisation\": \"max-abs\", \"thickness\": \"{}\",\n \"layer\": {{\"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": null, \"below\": null}},\n \"programs\": {{\"solved\": {}, \"pruned\": {}, \"pivots\": {}, \"rounds\": {}, \"points\": {}}},\n",
+                " \"result\": \"described\",\n \"thinnest\": true, \"normalisation\": \"max-abs\", \"thickness\": \"{}\",\n \"layer\": {{\"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": null, \"below\": null}},\n \"programs\": {{\"started\": {}, \"pruned\": {}, \"pivots\": {}, \"rounds\": {}, \"points\": {}}},\n",
                 t.thickness,
                 list(l.coefficients.iter().chain([&zero])),
                 l.lower,
