@@ -19,7 +19,9 @@
 //! `Σ (y_p − z_p) φ_j(p) − Σ (s_i + t_i)`, by the exact simplex of [`super::lp`]. Its
 //! columns are generated: the program starts with the points extreme along each basis
 //! function, and the duals of its optimum are a candidate `(c, ℓ, u)`; the inliers most
-//! above `u` and most below `ℓ` are added, until none is outside. A program stops as soon
+//! above `u` and most below `ℓ` are added, until none is outside (a pass in floating point
+//! picks a few per side while it sees some clearly outside; the pass that decides that
+//! none is outside is exact, in big integers). A program stops as soon
 //! as its (dual, lower-bound) objective reaches the best thickness of the programs before
 //! it. The optimal `c` is then scaled to the smallest integer vector (gcd 1), its bounds
 //! computed on every inlier, and the layer and thickness checked again, exactly.
@@ -33,7 +35,7 @@ use crate::model::Basis;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{Signed, Zero};
+use num_traits::{Signed, ToPrimitive, Zero};
 use std::collections::HashSet;
 
 /// The thinnest layer of the model holding the inliers (see [`crate::PointsAnswer`]): the
@@ -127,6 +129,10 @@ pub(super) fn thinnest(basis: &dyn Basis, inliers: &[Vec<i64>]) -> Result<Thinne
         .iter()
         .map(|f| f.iter().zip(&reference).map(|(a, b)| a - b).collect())
         .collect();
+    let gf: Vec<Vec<f64>> = g
+        .iter()
+        .map(|p| p.iter().map(|v| v.to_f64().unwrap_or(f64::NAN)).collect())
+        .collect();
     let mut work = ThinnestWork {
         points: g.len() as u64,
         ..ThinnestWork::default()
@@ -135,7 +141,7 @@ pub(super) fn thinnest(basis: &dyn Basis, inliers: &[Vec<i64>]) -> Result<Thinne
     for j in 0..n {
         work.programs += 1;
         let bound = best.as_ref().map(|b| &b.0);
-        match program(&g, j, bound, &mut work)? {
+        match program(&g, &gf, j, bound, &mut work)? {
             Some((t, c)) => best = Some((t, j, c)),
             None => work.pruned += 1,
         }
@@ -193,12 +199,52 @@ fn check(
     Ok(())
 }
 
+/// The points screened per side and round.
+const SCREENED: usize = 4;
+
+/// The indices of up to [`SCREENED`] points of `gf` (the lifted points as floats) most
+/// above `u` and most below `ℓ` for `c / det`, by a clear margin in floating point; `None`
+/// when a number does not fit a float.
+fn screen(
+    gf: &[Vec<f64>],
+    c: &[BigInt],
+    (u, l): (&BigInt, &BigInt),
+    det: &BigInt,
+) -> Option<Vec<usize>> {
+    let d = det.to_f64().filter(|v| v.is_finite() && *v > 0.0)?;
+    let ratio = |v: &BigInt| v.to_f64().map(|x| x / d).filter(|x| x.is_finite());
+    let cf: Vec<f64> = c.iter().map(ratio).collect::<Option<_>>()?;
+    let (uf, lf) = (ratio(u)?, ratio(l)?);
+    let scale: f64 = gf
+        .iter()
+        .flat_map(|p| p.iter().zip(&cf).map(|(a, b)| (a * b).abs()))
+        .fold(uf.abs().max(lf.abs()), f64::max);
+    let margin = 1e-9 * scale.max(1.0);
+    let mut above = Vec::new();
+    let mut below = Vec::new();
+    for (k, p) in gf.iter().enumerate() {
+        let v: f64 = p.iter().zip(&cf).map(|(a, b)| a * b).sum();
+        if v > uf + margin {
+            above.push((v - uf, k));
+        } else if v < lf - margin {
+            below.push((lf - v, k));
+        }
+    }
+    let mut out = Vec::new();
+    for side in [&mut above, &mut below] {
+        side.sort_by(|a, b| b.0.total_cmp(&a.0));
+        out.extend(side.iter().take(SCREENED).map(|&(_, k)| k));
+    }
+    Some(out)
+}
+
 /// `LP_j` on the points `g` (lifted, `g[0] = 0`), through its dual with column generation:
 /// `(thickness, c)` with `c` integer and `c_j > 0` the largest in absolute value, or `None`
 /// when its objective reached `bound` first (its optimum is no less).
 #[allow(clippy::type_complexity)]
 fn program(
     g: &[Vec<BigInt>],
+    gf: &[Vec<f64>],
     j: usize,
     bound: Option<&BigRational>,
     work: &mut ThinnestWork,
@@ -225,9 +271,9 @@ fn program(
     }
     let mut taken = vec![false; g.len()];
     taken[0] = true;
-    let mut take = |lp: &mut Simplex, k: usize| {
+    let mut take = |lp: &mut Simplex, k: usize| -> bool {
         if std::mem::replace(&mut taken[k], true) {
-            return;
+            return false;
         }
         let (mut y, mut z) = (vec![BigInt::zero(); m], vec![BigInt::zero(); m]);
         y[0] = BigInt::from(1);
@@ -244,6 +290,7 @@ fn program(
             entries: z,
             objective: -&g[k][j],
         });
+        true
     };
     // The points extreme along each basis function.
     for i in 0..n {
@@ -268,6 +315,17 @@ fn program(
         let c: Vec<BigInt> = (0..n)
             .map(|i| if i == j { det.clone() } else { -&pi[row(i)] })
             .collect();
+        // Screening in floating point first: the most violated points not yet taken, a few
+        // per side; the exact pass below runs only when it finds none (and decides).
+        if let Some(found) = screen(gf, &c, (&pi[0], &-&pi[1]), &det) {
+            let mut added = false;
+            for k in found {
+                added |= take(&mut lp, k);
+            }
+            if added {
+                continue;
+            }
+        }
         let values: Vec<BigInt> = g.iter().map(|p| dot(&c, p)).collect();
         let (mut hi, mut lo) = (0, 0);
         for (k, v) in values.iter().enumerate() {
