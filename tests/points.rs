@@ -194,6 +194,21 @@ fn recognized(dir: &Path, s: &PointSets, model: &str) -> bool {
             let origin = ints(&v["local"]["origin"]);
             check_layer(&names, &v["local"], &origin, s);
             assert!(v.get("witness").is_none());
+            // The inliers alone: their thinnest layer is no thicker than this one.
+            let c: Vec<BigInt> = ints(&v["layer"]["coefficients"])
+                .iter()
+                .map(|&x| BigInt::from(x))
+                .collect();
+            let values: Vec<BigInt> = s.inliers.iter().map(|p| big_value(&names, &c, p)).collect();
+            let alone =
+                recognize_points(&PointSets::new(s.inliers.clone()), model.parse().unwrap())
+                    .unwrap();
+            let PointsAnswer::Thinnest(t) = &alone.answer else {
+                panic!("{model}: no thinnest layer");
+            };
+            if let Some(w) = width(&values, &c[..c.len() - 1]) {
+                assert!(t.thickness <= w, "{model}: {} > {w}", t.thickness);
+            }
             true
         }
         "not described" => {
@@ -529,6 +544,11 @@ fn the_papers_cubic_layer_is_recognized() {
     // And through the command line, checked from the JSON alone.
     let dir = tempfile::tempdir().unwrap();
     assert!(recognized(dir.path(), &s, "poly3:3"));
+    // The inliers alone: a thinnest cubic layer whose exact coefficients are beyond 64 bits,
+    // read from the JSON text and checked on every point in big integers.
+    let (_, c, t) = thinnest(dir.path(), &s.inliers, "poly3:3");
+    assert!(c.iter().any(|x| x.bits() > 64), "{c:?}");
+    assert!(t.is_positive());
 }
 
 /// The integers of a list or number member of the one-line object `object` in the answer's
