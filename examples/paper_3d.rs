@@ -5,8 +5,10 @@
 //! For each layer `L ≤ f ≤ U`: the inliers are the integer points of the box in the layer;
 //! the outliers are their 26-neighbours outside it, above (`f > U`) or below (`f < L`). The
 //! example recognizes them (quadric3 for the ellipsoid, poly3:3 for the cubic), then a random
-//! half of every set, then the sets with one inlier of the middle declared above (no longer
-//! described: a witness), and checks each layer on every point and each witness exactly.
+//! half of every set, then the inliers alone (no outliers: the thinnest layer holding them,
+//! by exact linear programming), then the sets with one inlier of the middle declared above
+//! (no longer described: a witness), and checks each layer on every point and each witness
+//! exactly.
 //! It writes `OUT_DIR/NAME.ply` (ASCII PLY, one vertex per point: inliers blue, points above
 //! red, below green; MeshLab, CloudCompare or Blender open it) and `OUT_DIR/NAME.json`, the
 //! point file for `layertrace recognize OUT_DIR/NAME.json --model poly3:3`.
@@ -20,7 +22,8 @@
 //! thickness of about one voxel along the steepest axis.
 
 use layertrace::{
-    recognize_points, write_atomic, BigInt, Model, PointSets, PointsAnswer, PointsRecognition,
+    recognize_points, write_atomic, BigInt, BigRational, Model, PointSets, PointsAnswer,
+    PointsRecognition,
 };
 use std::collections::HashSet;
 use std::fmt::Write as _;
@@ -116,6 +119,25 @@ fn run(what: &str, sets: &PointSets, model: Model) -> Result<PointsRecognition, 
             }
             format!("not described, witness of {} pairs checked", w.pairs.len())
         }
+        PointsAnswer::Thinnest(t) => {
+            let layer = &t.layer;
+            for p in &sets.inliers {
+                let x = layer.value(&basis, p).ok_or("no value")?;
+                if x < layer.lower || x > layer.upper {
+                    return Err(format!("{what}: inlier {p:?} outside the layer"));
+                }
+            }
+            let w = &t.work;
+            format!(
+                "thinnest layer, thickness {} (≈ {:.4}), checked on every point; {} programs ({} stopped early), {} pivots, {} rounds",
+                t.thickness,
+                ratio(&t.thickness),
+                w.programs,
+                w.pruned,
+                w.pivots,
+                w.rounds
+            )
+        }
         other => return Err(format!("{what}: unexpected answer {other:?}")),
     };
     println!(
@@ -129,12 +151,15 @@ fn run(what: &str, sets: &PointSets, model: Model) -> Result<PointsRecognition, 
     Ok(r)
 }
 
+/// An exact fraction as a float, for reading.
+fn ratio(r: &BigRational) -> f64 {
+    let f = |v: &BigInt| v.to_string().parse::<f64>().unwrap_or(f64::NAN);
+    f(r.numer()) / f(r.denom())
+}
+
 /// The equation of a described recognition, `lower ≤ Σ c·f ≤ upper`.
 fn equation(r: &PointsRecognition) -> String {
-    let PointsAnswer::Described {
-        layer: Some(layer), ..
-    } = &r.answer
-    else {
+    let Some(layer) = r.layer() else {
         return String::new();
     };
     let mut s = String::new();
@@ -233,6 +258,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let r = run("all points", &sets, e.model)?;
         println!("  layer found: {}", equation(&r));
         run("a random half", &random_half(&sets, 2014), e.model)?;
+        // The inliers alone: the thinnest layer of the model holding them.
+        let alone = PointSets::new(sets.inliers.clone());
+        let r = run("the inliers alone", &alone, e.model)?;
+        println!("  thinnest layer: {}", equation(&r));
         // The inlier nearest the layer's middle value, declared above.
         let mut broken = sets.clone();
         let mid = (e.lower + e.upper) / 2;

@@ -136,7 +136,8 @@ pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, O
 pub use pixel::Pixel;
 pub use points::{
     point_sets_from_json, read_point_sets, recognition_json, recognize_points,
-    recognize_points_with, Layer, PointSets, PointsAnswer, PointsRecognition,
+    recognize_points_with, Layer, PointSets, PointsAnswer, PointsRecognition, Thinnest,
+    ThinnestWork,
 };
 pub use recognize::{
     max_margin_direction, recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness,

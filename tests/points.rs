@@ -7,6 +7,8 @@ mod common;
 
 use common::{bin, cli_in};
 use layertrace::{recognize_points, Model, PointSets, PointsAnswer};
+use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use serde_json::Value;
@@ -192,6 +194,21 @@ fn recognized(dir: &Path, s: &PointSets, model: &str) -> bool {
             let origin = ints(&v["local"]["origin"]);
             check_layer(&names, &v["local"], &origin, s);
             assert!(v.get("witness").is_none());
+            // The inliers alone: their thinnest layer is no thicker than this one.
+            let c: Vec<BigInt> = ints(&v["layer"]["coefficients"])
+                .iter()
+                .map(|&x| BigInt::from(x))
+                .collect();
+            let values: Vec<BigInt> = s.inliers.iter().map(|p| big_value(&names, &c, p)).collect();
+            let alone =
+                recognize_points(&PointSets::new(s.inliers.clone()), model.parse().unwrap())
+                    .unwrap();
+            let PointsAnswer::Thinnest(t) = &alone.answer else {
+                panic!("{model}: no thinnest layer");
+            };
+            if let Some(w) = width(&values, &c[..c.len() - 1]) {
+                assert!(t.thickness <= w, "{model}: {} > {w}", t.thickness);
+            }
             true
         }
         "not described" => {
@@ -336,16 +353,23 @@ fn standard_input_output_file_and_the_input_protected() {
         std::fs::read_to_string(dir.path().join("p.json")).unwrap(),
         text
     );
-    // Without outliers: described by zero, with a warning.
+    // Without outliers: the thinnest layer, without a warning: the line through both points.
     let (code, out, err) = recognize(
         dir.path(),
-        &["-", "-m", "line", "-q"],
+        &["-", "-m", "line"],
         b"{\"inliers\": [[1, 2], [3, 5]]}",
     );
     assert_eq!(code, 0);
-    assert!(err.contains("warning: no points above or below"), "{err}");
+    assert!(!err.contains("warning"), "{err}");
+    assert!(err.contains("thinnest layer, thickness 0"), "{err}");
     let v: Value = serde_json::from_str(&out).unwrap();
-    assert_eq!(v["layer"]["coefficients"], serde_json::json!([0, 0, 0]));
+    assert_eq!(v["thinnest"], true);
+    assert_eq!(v["thickness"], "0");
+    assert_eq!(v["layer"]["coefficients"], serde_json::json!([3, -2, 0]));
+    assert_eq!(
+        (v["layer"]["lower"].clone(), v["layer"]["upper"].clone()),
+        ((-1).into(), (-1).into())
+    );
 }
 
 #[test]
@@ -520,4 +544,179 @@ fn the_papers_cubic_layer_is_recognized() {
     // And through the command line, checked from the JSON alone.
     let dir = tempfile::tempdir().unwrap();
     assert!(recognized(dir.path(), &s, "poly3:3"));
+    // The inliers alone: a thinnest cubic layer whose exact coefficients are beyond 64 bits,
+    // read from the JSON text and checked on every point in big integers.
+    let (_, c, t) = thinnest(dir.path(), &s.inliers, "poly3:3");
+    assert!(c.iter().any(|x| x.bits() > 64), "{c:?}");
+    assert!(t.is_positive());
+}
+
+/// The integers of a list or number member of the one-line object `object` in the answer's
+/// text, as big integers (serde_json would read those beyond 64 bits as doubles).
+fn big_member(text: &str, object: &str, member: &str) -> Vec<BigInt> {
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with(&format!("\"{object}\": {{")))
+        .unwrap_or_else(|| panic!("no {object} in {text}"));
+    let key = format!("\"{member}\": ");
+    let rest = &line[line.find(&key).unwrap() + key.len()..];
+    let rest = rest.strip_prefix('[').map_or_else(
+        || &rest[..rest.find([',', '}']).unwrap()],
+        |r| &r[..r.find(']').unwrap()],
+    );
+    rest.split(',').map(|v| v.trim().parse().unwrap()).collect()
+}
+
+/// A layer without outliers through the CLI, checked from the JSON alone: the inliers
+/// within the bounds (both reached, evaluated from the basis' names), the coefficients
+/// without a common divisor, the thickness `(upper − lower) / max |c_i|` as written.
+/// Returns the basis' names, the non-constant coefficients and the thickness.
+fn thinnest(
+    dir: &Path,
+    inliers: &[Vec<i64>],
+    model: &str,
+) -> (Vec<String>, Vec<BigInt>, BigRational) {
+    let s = PointSets::new(inliers.to_vec());
+    std::fs::write(dir.join("t.json"), file_json(&s)).unwrap();
+    let (code, out, err) = recognize(dir, &["t.json", "--model", model, "-q"], b"");
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "");
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["result"], "described");
+    assert_eq!(v["thinnest"], true);
+    assert_eq!(v["normalisation"], "max-abs");
+    assert!(v.get("local").is_none() && v.get("witness").is_none());
+    assert!(v["layer"]["above"].is_null() && v["layer"]["below"].is_null());
+    let names: Vec<String> = v["basis"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap().to_string())
+        .collect();
+    let mut c = big_member(&out, "layer", "coefficients");
+    assert_eq!(
+        c.pop(),
+        Some(BigInt::zero()),
+        "the constant's coefficient is 0"
+    );
+    let lower = big_member(&out, "layer", "lower").remove(0);
+    let upper = big_member(&out, "layer", "upper").remove(0);
+    let values: Vec<BigInt> = inliers.iter().map(|p| big_value(&names, &c, p)).collect();
+    assert!(values.iter().all(|x| lower <= *x && *x <= upper), "{model}");
+    assert_eq!(values.iter().min(), Some(&lower));
+    assert_eq!(values.iter().max(), Some(&upper));
+    assert!(c.iter().fold(BigInt::zero(), |g, x| g.gcd(x)).is_one());
+    let thickness: BigRational = v["thickness"].as_str().unwrap().parse().unwrap();
+    assert_eq!(thickness, width(&values, &c).unwrap());
+    (names, c, thickness)
+}
+
+/// `Σ c_i · basis_i(p)` over the non-constant functions, exactly.
+fn big_value(names: &[String], c: &[BigInt], p: &[i64]) -> BigInt {
+    let p: Vec<i128> = p.iter().map(|&x| i128::from(x)).collect();
+    c.iter()
+        .zip(names)
+        .map(|(a, n)| a * BigInt::from(eval_name(n, &p)))
+        .sum()
+}
+
+/// `(max − min) / max |c_i|` over the values; `None` for `c = 0`.
+fn width(values: &[BigInt], c: &[BigInt]) -> Option<BigRational> {
+    let norm = c.iter().map(BigInt::abs).max().filter(|n| !n.is_zero())?;
+    let range = values.iter().max()? - values.iter().min()?;
+    Some(BigRational::new(range, norm))
+}
+
+/// Without outliers, lines: the thickness written is the L∞-thinnest strip's, found by brute
+/// force (its normal is orthogonal to an edge of the convex hull, so to some pair of points).
+#[test]
+fn without_outliers_the_thinnest_line_matches_brute_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut next = rng(1998);
+    for round in 0..25 {
+        let count = 2 + next(15).unsigned_abs() as usize;
+        let (cx, cy, r) = (next(100_000), next(100_000), 1 + next(30).abs());
+        let points: Vec<Vec<i64>> = (0..count)
+            .map(|_| vec![cx + next(r), cy + next(r)])
+            .collect();
+        let (_, _, t) = thinnest(dir.path(), &points, "line");
+        let mut best: Option<BigRational> = None;
+        for p in &points {
+            for q in &points {
+                let c = [BigInt::from(q[1] - p[1]), BigInt::from(p[0] - q[0])];
+                let values: Vec<BigInt> =
+                    points.iter().map(|x| &c[0] * x[0] + &c[1] * x[1]).collect();
+                if let Some(w) = width(&values, &c) {
+                    best = Some(best.map_or(w.clone(), |b| b.min(w)));
+                }
+            }
+        }
+        assert_eq!(
+            Some(t),
+            best.or(Some(BigRational::zero())),
+            "round {round}: {points:?}"
+        );
+    }
+}
+
+/// Without outliers, digitized circles and conics and a 3-D quadric shell: the layer holds
+/// every point (checked from the JSON), and no coefficient vector of a random family (near
+/// the one found, and anywhere) gives a thinner layer.
+#[test]
+fn without_outliers_no_random_direction_is_thinner() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut next = rng(2014);
+    let circle = split(
+        square(40, 9),
+        |p| (p[0] - 41).pow(2) + (p[1] - 38).pow(2),
+        30,
+        50,
+    )
+    .inliers;
+    let conic = split(
+        square(-7, 9),
+        |p| 3 * (p[0] + 7).pow(2) + 2 * (p[1] + 5).pow(2) - (p[0] + 7) * (p[1] + 5),
+        60,
+        85,
+    )
+    .inliers;
+    let shell = split(
+        cube(6),
+        |p| 4 * p[0] * p[0] + 9 * p[1] * p[1] + 16 * p[2] * p[2] + 3 * p[0] * p[2],
+        100,
+        150,
+    )
+    .inliers;
+    for (points, model) in [(&circle, "circle"), (&conic, "conic"), (&shell, "quadric3")] {
+        assert!(points.len() > 30, "{model}");
+        let (names, c, t) = thinnest(dir.path(), points, model);
+        assert!(t.is_positive(), "{model}");
+        let mut tried = 0;
+        for k in 0..400 {
+            let spread = if k % 2 == 0 { 3 } else { 1000 };
+            let d: Vec<BigInt> = c.iter().map(|x| x * 100 + next(spread)).collect();
+            let values: Vec<BigInt> = points.iter().map(|p| big_value(&names, &d, p)).collect();
+            if let Some(w) = width(&values, &d) {
+                assert!(w >= t, "{model}: {d:?} gives {w} < {t}");
+                tried += 1;
+            }
+        }
+        assert!(tried > 300);
+    }
+}
+
+/// Without outliers, points on one curve (or surface) of the model: thickness 0.
+#[test]
+fn without_outliers_points_on_a_curve_have_thickness_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let line: Vec<Vec<i64>> = (0..12).map(|k| vec![1000 + 5 * k, -300 - 3 * k]).collect();
+    let circle = split(square(0, 13), |p| p[0] * p[0] + p[1] * p[1], 169, 169).inliers;
+    let plane: Vec<Vec<i64>> = cube(3)
+        .map(|p| vec![p[0], p[1], 2 * p[0] - 3 * p[1] + 7])
+        .collect();
+    for (points, model) in [(&line, "line"), (&circle, "circle"), (&plane, "poly3:1")] {
+        let (_, c, t) = thinnest(dir.path(), points, model);
+        assert!(t.is_zero(), "{model}: {t}");
+        assert!(c.iter().any(|x| !x.is_zero()));
+    }
 }

@@ -18,8 +18,9 @@ Example:
 The file (or '-' for standard input) is one JSON object of integer points, each [x, y]
 or [x, y, z], all of the same dimension:
   {\"inliers\": [[x, y], ...], \"above\": [[x, y], ...], \"below\": [[x, y], ...]}
-\"above\" and \"below\" may be empty or absent (then the zero function describes the
-inliers: give outliers to ask for a layer).
+\"above\" and \"below\" may be empty or absent: then the answer is the thinnest layer of
+the model holding the inliers (least (upper - lower) / max |coefficient|, computed exactly
+by linear programming), with \"thinnest\": true and its exact \"thickness\".
 
 The answer (JSON, standard output unless -o) says \"described\", with the layer's exact
 integer coefficients and bounds in the points' own coordinates (inliers within
@@ -107,15 +108,10 @@ pub fn run(args: &RecognizeArgs) -> Result<(), Error> {
     outs.write(out, recognition_json(&r).into_bytes())?;
     outs.commit()?;
     let [i, a, b] = r.counts;
-    if a + b == 0 {
-        eprintln!(
-            "layertrace: {}: warning: no points above or below: the zero function describes any set; give outliers to ask for a layer",
-            name.display()
-        );
-    }
     if !args.quiet {
         let answer = match &r.answer {
             PointsAnswer::Described { .. } => "described".to_string(),
+            PointsAnswer::Thinnest(t) => format!("thinnest layer, thickness {}", t.thickness),
             PointsAnswer::NotDescribed(w) => {
                 format!("not described (witness of {} pairs)", w.pairs.len())
             }

@@ -344,6 +344,24 @@ fn or_null<T: fmt::Display>(v: Option<T>) -> String {
 /// `Σ weight · d = 0` with `d = F(outlier − origin) − F(inlier − origin)` for a term whose
 /// outlier is above, `F(inlier − origin) − F(outlier − origin)` below, `F` the basis
 /// functions: no layer can have every `d` on its positive side.
+///
+/// Without outliers (`"above": 0, "below": 0`) the answer is the thinnest layer holding the
+/// inliers ([`super::Thinnest`]): `"result": "described"`, then
+///
+/// ```text
+///  "thinnest": true, "normalisation": "max-abs", "thickness": "6/7",
+///  "layer": {"coefficients": [-3, 7, 0], "lower": -6, "upper": 0, "above": null, "below": null},
+///  "programs": {"started": 2, "pruned": 0, "pivots": 9, "rounds": 4, "points": 20},
+/// ```
+///
+/// and no `local`. The thickness is `(upper − lower) / max_i |coefficients_i|` (the
+/// constant's coefficient excluded: `"normalisation": "max-abs"`, the L∞ norm), an exact
+/// fraction `p/q` (or an integer), the least over every layer of the model holding the
+/// inliers, in the points' own coordinates; the coefficients have no common divisor and the
+/// largest in absolute value is positive. `programs` counts the linear programs started (one
+/// per non-constant basis function), those stopped early (already no thinner than the best),
+/// the simplex pivots, the rounds of constraint generation and the distinct lifted inliers.
+/// The recognizer is not run: its `stats` are zero.
 pub fn recognition_json(r: &PointsRecognition) -> String {
     let quote = |s: &str| serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into());
     let mut s = String::new();
@@ -383,6 +401,24 @@ pub fn recognition_json(r: &PointsRecognition) -> String {
                 local.upper,
                 or_null(local.above),
                 or_null(local.below)
+            );
+        }
+        PointsAnswer::Thinnest(t) => {
+            let l = &t.layer;
+            let zero = num_bigint::BigInt::default();
+            let w = &t.work;
+            let _ = write!(
+                s,
+                " \"result\": \"described\",\n \"thinnest\": true, \"normalisation\": \"max-abs\", \"thickness\": \"{}\",\n \"layer\": {{\"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": null, \"below\": null}},\n \"programs\": {{\"started\": {}, \"pruned\": {}, \"pivots\": {}, \"rounds\": {}, \"points\": {}}},\n",
+                t.thickness,
+                list(l.coefficients.iter().chain([&zero])),
+                l.lower,
+                l.upper,
+                w.programs,
+                w.pruned,
+                w.pivots,
+                w.rounds,
+                w.points
             );
         }
         PointsAnswer::NotDescribed(w) => {

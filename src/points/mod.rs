@@ -8,13 +8,17 @@
 //! hull, see [`crate::Recognizer`]). [`read_point_sets`] reads the JSON files of
 //! `layertrace recognize`; [`recognition_json`] writes its answer.
 //!
-//! Without outliers every set is described, by the zero function (`0 ≤ 0 ≤ 0`): the
-//! recognizer separates; it does not look for the thinnest layer holding a set.
+//! Without outliers the answer is the classical recognition: the thinnest layer of the
+//! model holding the inliers, computed exactly by linear programming ([`Thinnest`], defined
+//! with the L∞ normalisation of the coefficients).
 
 mod json;
+mod lp;
+mod thinnest;
 mod translate;
 
 pub use json::{point_sets_from_json, read_point_sets, recognition_json};
+pub use thinnest::{Thinnest, ThinnestWork};
 
 use crate::error::Error;
 use crate::model::{Basis, Model};
@@ -117,6 +121,10 @@ pub enum PointsAnswer {
     },
     /// No layer of the model separates the sets: the witness proves it.
     NotDescribed(Witness),
+    /// There are no outliers: the thinnest layer of the model holding the inliers, with
+    /// its exact thickness (`(upper − lower) / max_i |coefficients_i|`, the least over every
+    /// layer of the model holding them; see [`Thinnest`]).
+    Thinnest(Thinnest),
 }
 
 /// What [`recognize_points`] found, and the work it took.
@@ -133,14 +141,26 @@ pub struct PointsRecognition {
     pub counts: [usize; 3],
     /// Described or not, with the proof.
     pub answer: PointsAnswer,
-    /// The recognizer's counters.
+    /// The recognizer's counters (zero for a thinnest layer: the recognizer is not run).
     pub stats: Stats,
 }
 
 impl PointsRecognition {
-    /// True when the sets are described.
+    /// True when the sets are described (by a separating or a thinnest layer).
     pub fn is_described(&self) -> bool {
-        matches!(self.answer, PointsAnswer::Described { .. })
+        matches!(
+            self.answer,
+            PointsAnswer::Described { .. } | PointsAnswer::Thinnest(_)
+        )
+    }
+
+    /// The layer in the points' own coordinates, when there is one.
+    pub fn layer(&self) -> Option<&Layer> {
+        match &self.answer {
+            PointsAnswer::Described { layer, .. } => layer.as_ref(),
+            PointsAnswer::Thinnest(t) => Some(&t.layer),
+            PointsAnswer::NotDescribed(_) => None,
+        }
     }
 }
 
@@ -165,14 +185,30 @@ impl PointsRecognition {
 /// # Ok::<(), layertrace::Error>(())
 /// ```
 ///
-/// Without outliers every set is described, by the zero function (`0 ≤ 0 ≤ 0`): the
-/// recognizer separates; it does not look for the thinnest layer holding a set.
+/// Without outliers (`above` and `below` empty) the answer is [`PointsAnswer::Thinnest`]:
+/// the layer of the model holding the inliers whose thickness
+/// `(upper − lower) / max_i |coefficients_i|` is least, exactly, in the points' own
+/// coordinates.
+///
+/// ```
+/// use layertrace::{recognize_points, BigRational, Model, PointSets, PointsAnswer};
+///
+/// // A digital straight segment of slope 3/7: the thinnest strip is −6 ≤ −3x + 7y ≤ 0,
+/// // of thickness 6/7 (the largest coefficient, the normalising one, is positive).
+/// let sets = PointSets::new((0..20).map(|x| vec![x, 3 * x / 7]).collect());
+/// let r = recognize_points(&sets, Model::Line)?;
+/// let PointsAnswer::Thinnest(t) = &r.answer else { panic!() };
+/// assert_eq!(t.thickness, BigRational::new(6.into(), 7.into()));
+/// assert_eq!(t.layer.coefficients, [(-3).into(), 7.into()]);
+/// assert_eq!((t.layer.lower.clone(), t.layer.upper.clone()), ((-6).into(), 0.into()));
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 ///
 /// Errors ([`Error::Points`], the message names the point): no inliers; a point whose
 /// number of coordinates is not the model's (2 for line, circle, conic and poly:D; 3 for
-/// quadric3 and poly3:D); a point whose lifting, relative to the middle of the inliers'
-/// bounding box, overflows 64-bit integers; an undecided recognition (never met in the
-/// tests).
+/// quadric3 and poly3:D); with outliers, a point whose lifting, relative to the middle of
+/// the inliers' bounding box, overflows 64-bit integers; an undecided recognition (never
+/// met in the tests).
 pub fn recognize_points(sets: &PointSets, model: Model) -> Result<PointsRecognition, Error> {
     let mut r = recognize_points_with(sets, Arc::new(model.basis()))?;
     r.model = Some(model);
@@ -199,6 +235,17 @@ pub fn recognize_points_with(
                 if p.len() == 1 { "" } else { "s" }
             )));
         }
+    }
+    if sets.above.is_empty() && sets.below.is_empty() {
+        let t = thinnest::thinnest(&*basis, &sets.inliers).map_err(err)?;
+        return Ok(PointsRecognition {
+            model: None,
+            basis: basis.names(),
+            dimension: pd,
+            counts: [sets.inliers.len(), 0, 0],
+            answer: PointsAnswer::Thinnest(t),
+            stats: Stats::default(),
+        });
     }
     let origin = middle(&sets.inliers);
     // Every lifting must fit i64 (the recognizer's exact data); say which point does not.

@@ -140,21 +140,23 @@ fn a_3d_ellipsoidal_layer_is_described_and_a_flipped_point_is_not() {
     assert!(witness_holds(&basis, w));
 }
 
+/// Without outliers: the thinnest layer. For the triangle (0, 0), (5, 1), (2, 9) the
+/// L∞-thinnest strip runs along the edge from (0, 0) to (2, 9): `9x − 2y`, range 43.
 #[test]
-fn without_outliers_the_zero_function_describes() {
+fn without_outliers_the_thinnest_layer_answers() {
     let sets = PointSets::new(vec![vec![0, 0], vec![5, 1], vec![2, 9]]);
     let r = recognize_points(&sets, Model::Line).unwrap();
-    let PointsAnswer::Described {
-        layer: Some(layer), ..
-    } = &r.answer
-    else {
-        panic!("not described");
+    assert!(r.is_described());
+    let PointsAnswer::Thinnest(t) = &r.answer else {
+        panic!("not the thinnest layer: {:?}", r.answer);
     };
-    assert!(layer.coefficients.iter().all(Zero::is_zero));
-    assert_eq!(
-        (layer.lower.clone(), layer.upper.clone()),
-        (BigInt::zero(), BigInt::zero())
-    );
+    assert_eq!(t.thickness, BigRational::new(43.into(), 9.into()));
+    let l = r.layer().unwrap();
+    let basis = Model::Line.basis();
+    assert!(layer_holds(&basis, &sets, l));
+    assert_eq!(l.upper.clone() - &l.lower, BigInt::from(43));
+    assert_eq!(t.work.programs, 2);
+    assert_eq!(r.stats.queries, 0);
 }
 
 #[test]
@@ -175,5 +177,12 @@ fn bad_sets_are_errors_naming_the_point() {
     assert!(m.contains("above[0]") && m.contains("overflows"), "{m}");
     // At the ends of the i64 range, the subtraction from the origin overflows first.
     let ends = PointSets::new(vec![vec![i64::MIN, 0], vec![i64::MAX, 0]]);
-    assert!(msg(&ends, Model::Line).contains("overflows"));
+    assert!(msg(&ends.clone().with_above(vec![vec![0, 1]]), Model::Line).contains("overflows"));
+    // Without outliers the thinnest layer is computed in big integers: no overflow.
+    let r = recognize_points(&ends, Model::Poly(3)).unwrap();
+    assert!(layer_holds(
+        &Model::Poly(3).basis(),
+        &ends,
+        r.layer().unwrap()
+    ));
 }
