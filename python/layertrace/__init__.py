@@ -263,13 +263,17 @@ class Recognition:
             [...], "outlier": [...], "side": "above" | "below"}``: non-negative weights
             summing to 1 that put the origin in the convex hull of the lifted
             differences, so no layer can separate the sets.
+        thinnest: True when there were no outliers: ``layer`` is then the thinnest layer
+            of the model holding the inliers, and ``thickness`` its exact thickness
+            ``(upper - lower) / max |c_i|`` (constant excluded), a ``Fraction``; else
+            False and None.
         basis: the names of the basis functions, in coefficient order.
         model, dimension: as given; stats: the recognizer's counters.
         document: the whole ``layertrace-recognition/1`` JSON as a dict; json: its text.
     """
 
-    __slots__ = ("described", "layer", "witness", "basis", "model", "dimension", "stats",
-                 "document", "json")
+    __slots__ = ("described", "layer", "witness", "thinnest", "thickness", "basis", "model",
+                 "dimension", "stats", "document", "json")
 
     def __init__(self, text: str) -> None:
         self.json: str = text
@@ -282,6 +286,10 @@ class Recognition:
             self.witness = [
                 {**term, "weight": Fraction(term["weight"])} for term in d["witness"]["terms"]
             ]
+        self.thinnest: bool = bool(d.get("thinnest", False))
+        self.thickness: Optional[Fraction] = (
+            Fraction(d["thickness"]) if "thickness" in d else None
+        )
         self.basis: List[str] = d["basis"]
         self.model: Optional[str] = d["model"]
         self.dimension: int = d["dimension"]
@@ -334,7 +342,8 @@ def recognize(
 
     Args:
         inliers: integer points, 2-D or 3-D (a list of tuples or an N×D integer array).
-        above, below: outliers (may be None or empty).
+        above, below: outliers (may be None or empty). With neither, the answer is the
+            thinnest layer holding the inliers (``Recognition.thinnest``).
         model: ``"line"``, ``"circle"``, ``"conic"``, ``"poly:D"`` for 2-D points;
             ``"quadric3"``, ``"poly3:D"`` for 3-D points.
 

@@ -175,6 +175,32 @@ def test_a_bent_set_is_not_described_and_the_witness_proves_it():
     assert total == [0, 0]
 
 
+def test_without_outliers_the_thinnest_layer():
+    rng = random.Random(11)
+    for _ in range(15):
+        pts = sorted({(rng.randint(-8, 8), rng.randint(-8, 8)) for _ in range(rng.randint(3, 9))})
+        r = layertrace.recognize(pts, model="line")
+        assert r.described and r.thinnest and r.witness is None
+        L = r.layer
+        a, b, _ = L["coefficients"]
+        values = [line_value(L, p) for p in pts]
+        assert min(values) == L["lower"] and max(values) == L["upper"]
+        assert r.thickness == Fraction(L["upper"] - L["lower"], max(abs(a), abs(b)))
+        # Brute force: the L∞-thinnest strip has the direction of a line through two points.
+        best = None
+        for i, p in enumerate(pts):
+            for q in pts[i + 1:]:
+                na, nb = q[1] - p[1], p[0] - q[0]  # normal of the line through p and q
+                vals = [na * x + nb * y for (x, y) in pts]
+                t = Fraction(max(vals) - min(vals), max(abs(na), abs(nb)))
+                best = t if best is None else min(best, t)
+        assert r.thickness == best, (pts, r.thickness, best)
+    collinear = layertrace.recognize([(k, 2 * k + 1) for k in range(6)], model="line")
+    assert collinear.thickness == 0 and collinear.layer["lower"] == collinear.layer["upper"]
+    separated = layertrace.recognize([(0, 0), (1, 0)], above=[(0, 1)], model="line")
+    assert separated.described and not separated.thinnest and separated.thickness is None
+
+
 def test_a_quadric_shell_in_3d():
     shell, outside, inside = [], [], []
     for x in range(-6, 7):
