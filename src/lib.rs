@@ -97,8 +97,8 @@ pub use bitmap::{
 };
 pub use contour::{trace, Contour, Convention};
 pub use curve::{
-    intersect_near, level_curve_path, project, Conic, CurveKind, PathCommand, Polynomial,
-    ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
+    intersect_near, level_curve_path, project, Conic, CurveKind, EllipseParams, HyperbolaParams,
+    ParabolaParams, PathCommand, Polynomial, ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
 };
 pub use decompose::{
     decompose, decompose_cover, decompose_points, decompose_points_within, decompose_within,

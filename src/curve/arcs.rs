@@ -2,7 +2,7 @@
 //! of nearly flat arcs, and parabola arcs as quadratic Béziers.
 
 use super::command::PathCommand;
-use super::conic::Conic;
+use super::conic::{Conic, EllipseParams};
 use super::path::GUIDE_MAX_DISTANCE;
 use super::trace::segment_distance;
 use kurbo::{ParamCurveNearest, Point, QuadBez, SvgArc, Vec2};
@@ -26,7 +26,7 @@ pub(super) fn flat_arc(
     guide: &[Point],
     tolerance: f64,
 ) -> Option<f64> {
-    let (_, radii, _) = conic.ellipse_params()?;
+    let radii = conic.ellipse_params()?.radii;
     let (a, b) = (radii.x.max(radii.y), radii.x.min(radii.y));
     let rho = b * b / a;
     let chord = to - from;
@@ -59,7 +59,11 @@ pub(super) fn ellipse_path(
     to: Point,
     guide: &[Point],
 ) -> Option<Vec<PathCommand>> {
-    let (centre, radii, theta) = conic.ellipse_params()?;
+    let EllipseParams {
+        centre,
+        radii,
+        rotation: theta,
+    } = conic.ellipse_params()?;
     let rot = Vec2::from_angle(theta);
     let angle = |p: Point| {
         let v = p - centre;
@@ -200,7 +204,11 @@ mod tests {
             }
             let poly = Polynomial::from(k);
             // The intended arc, in the recovered parametrisation (robust to the rounding).
-            let (c, r, a) = k.ellipse_params().unwrap();
+            let EllipseParams {
+                centre: c,
+                radii: r,
+                rotation: a,
+            } = k.ellipse_params().unwrap();
             let phi0 = rng.range(-PI, PI);
             let magnitude = rng.range(0.1, TAU - 0.1);
             let sweep = if case % 2 == 0 { magnitude } else { -magnitude };
@@ -257,7 +265,11 @@ mod tests {
         .unwrap();
         let k = poly.as_conic().unwrap();
         assert_eq!(k.classify(), CurveKind::Ellipse);
-        let (c, r, a) = k.ellipse_params().unwrap();
+        let EllipseParams {
+            centre: c,
+            radii: r,
+            rotation: a,
+        } = k.ellipse_params().unwrap();
         for sweep in [1.0, -2.5, 5.0] {
             let from = project(&poly, ellipse_point(c, r.x, r.y, a, 0.3), 1e-3).unwrap();
             let to = project(&poly, ellipse_point(c, r.x, r.y, a, 0.3 + sweep), 1e-3).unwrap();
@@ -285,7 +297,11 @@ mod tests {
         let centre = Point::new(50.0, 40.0);
         let k = ellipse_conic(centre, 20.0, 8.0, 0.5, 160.0);
         let poly = Polynomial::from(k);
-        let (c, r, a) = k.ellipse_params().unwrap();
+        let EllipseParams {
+            centre: c,
+            radii: r,
+            rotation: a,
+        } = k.ellipse_params().unwrap();
         for dir in [1.0, -1.0] {
             let from = ellipse_point(c, r.x, r.y, a, 1.0);
             let guide: Vec<Point> = (1..40)

@@ -73,14 +73,18 @@ impl PathCommand {
 mod tests {
     use super::*;
     use crate::curve::test_util::*;
-    use crate::curve::{level_curve_path, Polynomial};
+    use crate::curve::{level_curve_path, EllipseParams, Polynomial};
     use kurbo::ParamCurve;
 
     #[test]
     fn path_els_follow_the_commands() {
         let k = ellipse_conic(Point::new(40.0, 30.0), 15.0, 6.0, 0.8, 90.0);
         let poly = Polynomial::from(k);
-        let (c, r, a) = k.ellipse_params().unwrap();
+        let EllipseParams {
+            centre: c,
+            radii: r,
+            rotation: a,
+        } = k.ellipse_params().unwrap();
         let from = ellipse_point(c, r.x, r.y, a, 0.5);
         let to = ellipse_point(c, r.x, r.y, a, 4.0);
         let guide: Vec<Point> = (1..20)

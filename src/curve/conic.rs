@@ -41,6 +41,43 @@ struct Principal {
     l2: f64,
 }
 
+/// An ellipse (or circle) as [`Conic::ellipse_params`] gives it: the curve
+/// `{centre + R(rotation) (radii.x cos φ, radii.y sin φ)}`, the SVG arc convention.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EllipseParams {
+    /// The centre.
+    pub centre: Point,
+    /// `(rx, ry)`, `rx` along the axis at angle `rotation`.
+    pub radii: Vec2,
+    /// The angle of the `rx` axis, in `(−π/2, π/2]`.
+    pub rotation: f64,
+}
+
+/// A parabola as [`Conic::parabola_params`] gives it: `v = u² / (4 focal_length)` in the
+/// frame of the vertex with `v` along `axis`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParabolaParams {
+    /// The vertex.
+    pub vertex: Point,
+    /// The unit axis direction, pointing into the parabola (towards the focus).
+    pub axis: Vec2,
+    /// The vertex-to-focus distance.
+    pub focal_length: f64,
+}
+
+/// A hyperbola as [`Conic::hyperbola_params`] gives it: the curve
+/// `{centre + R(rotation) (±a cosh s, b sinh s)}` with `(a, b) = semi_axes`; the branches are
+/// the two signs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HyperbolaParams {
+    /// The centre.
+    pub centre: Point,
+    /// `(a, b)`: `a` transverse (through the vertices), `b` conjugate.
+    pub semi_axes: Vec2,
+    /// The angle of the transverse axis.
+    pub rotation: f64,
+}
+
 impl Conic {
     /// The conic with the given coefficients.
     #[inline]
@@ -164,7 +201,7 @@ impl Conic {
     /// (`rx` along the axis rotated by `x_rotation = θ`). `θ ∈ (−π/2, π/2]`.
     ///
     /// Returns `None` unless [`Conic::classify`] gives `Circle` or `Ellipse`.
-    pub fn ellipse_params(&self) -> Option<(Point, Vec2, f64)> {
+    pub fn ellipse_params(&self) -> Option<EllipseParams> {
         if !matches!(self.classify(), CurveKind::Circle | CurveKind::Ellipse) {
             return None;
         }
@@ -172,11 +209,11 @@ impl Conic {
         let pr = self.principal();
         let rx = (-value / pr.l1).sqrt();
         let ry = (-value / pr.l2).sqrt();
-        (rx.is_finite() && ry.is_finite() && rx > 0.0 && ry > 0.0).then_some((
+        (rx.is_finite() && ry.is_finite() && rx > 0.0 && ry > 0.0).then_some(EllipseParams {
             centre,
-            Vec2::new(rx, ry),
-            pr.theta,
-        ))
+            radii: Vec2::new(rx, ry),
+            rotation: pr.theta,
+        })
     }
 
     /// Frame of a parabola: unit vector `n` across the axis, its eigenvalue `λ`, and the
@@ -203,7 +240,7 @@ impl Conic {
     /// the frame of the vertex with `v` along the axis).
     ///
     /// Returns `None` unless [`Conic::classify`] gives `Parabola`.
-    pub fn parabola_params(&self) -> Option<(Point, Vec2, f64)> {
+    pub fn parabola_params(&self) -> Option<ParabolaParams> {
         if self.classify() != CurveKind::Parabola {
             return None;
         }
@@ -215,7 +252,11 @@ impl Conic {
         let vertex = (n * u0 + t * v0).to_point();
         let axis = if -lambda / ee > 0.0 { t } else { -t };
         let p = (ee / (4.0 * lambda)).abs();
-        (vertex.is_finite() && p.is_finite()).then_some((vertex, axis, p))
+        (vertex.is_finite() && p.is_finite()).then_some(ParabolaParams {
+            vertex,
+            axis,
+            focal_length: p,
+        })
     }
 
     /// The centre, semi-axes `(a, b)` (`a` transverse, through the vertices; `b` conjugate) and
@@ -223,7 +264,7 @@ impl Conic {
     /// `{centre + R(θ) (±a cosh s, b sinh s)}`; the branches are the two signs.
     ///
     /// Returns `None` unless [`Conic::classify`] gives `Hyperbola`.
-    pub fn hyperbola_params(&self) -> Option<(Point, Vec2, f64)> {
+    pub fn hyperbola_params(&self) -> Option<HyperbolaParams> {
         if self.classify() != CurveKind::Hyperbola {
             return None;
         }
@@ -241,7 +282,11 @@ impl Conic {
                 pr.theta + 0.5 * PI,
             )
         };
-        semi.is_finite().then_some((centre, semi, angle))
+        semi.is_finite().then_some(HyperbolaParams {
+            centre,
+            semi_axes: semi,
+            rotation: angle,
+        })
     }
 }
 
@@ -260,7 +305,11 @@ mod tests {
         assert_eq!(circle.classify(), Circle);
         let scaled = Conic::new(7.0, 0.0, 7.0, -42.0, 28.0, -84.0);
         assert_eq!(scaled.classify(), Circle);
-        let (c, r, _) = circle.ellipse_params().unwrap();
+        let EllipseParams {
+            centre: c,
+            radii: r,
+            ..
+        } = circle.ellipse_params().unwrap();
         assert_point_close(c, Point::new(3.0, -2.0), 1e-12, "circle centre");
         assert_close(r.x, 5.0, 1e-12, "circle rx");
         assert_close(r.y, 5.0, 1e-12, "circle ry");
@@ -361,7 +410,11 @@ mod tests {
         for th in [0.0, 0.4, 1.7, -2.5] {
             let v = Point::new(5.0, -3.0);
             let k = rotated_parabola(th, v);
-            let (vertex, axis, p) = k.parabola_params().unwrap();
+            let ParabolaParams {
+                vertex,
+                axis,
+                focal_length: p,
+            } = k.parabola_params().unwrap();
             assert_point_close(vertex, v, 1e-9, "parabola vertex");
             // Opens towards +y' = (−sin, cos).
             assert_point_close(
@@ -374,14 +427,22 @@ mod tests {
         }
         // (x − 1)²/9 − (y − 2)²/4 = 1 → 4x² − 9y² − 8x + 36y − 68 = 0.
         let h = Conic::new(4.0, 0.0, -9.0, -8.0, 36.0, -68.0);
-        let (c, semi, angle) = h.hyperbola_params().unwrap();
+        let HyperbolaParams {
+            centre: c,
+            semi_axes: semi,
+            rotation: angle,
+        } = h.hyperbola_params().unwrap();
         assert_point_close(c, Point::new(1.0, 2.0), 1e-12, "hyperbola centre");
         assert_close(semi.x, 3.0, 1e-12, "transverse");
         assert_close(semi.y, 2.0, 1e-12, "conjugate");
         assert_close(angle.sin(), 0.0, 1e-12, "transverse along x");
         // Swapped: (y − 2)²/4 − (x − 1)²/9 = 1.
         let h2 = Conic::new(-4.0, 0.0, 9.0, 8.0, -36.0, 68.0 - 72.0);
-        let (c, semi, angle) = h2.hyperbola_params().unwrap();
+        let HyperbolaParams {
+            centre: c,
+            semi_axes: semi,
+            rotation: angle,
+        } = h2.hyperbola_params().unwrap();
         assert_point_close(c, Point::new(1.0, 2.0), 1e-12, "hyperbola centre");
         assert_close(semi.x, 2.0, 1e-12, "transverse");
         assert_close(semi.y, 3.0, 1e-12, "conjugate");
@@ -400,7 +461,11 @@ mod tests {
             let th = rng.range(-PI, PI);
             let scale = rng.range(0.1, 1e4);
             let k = ellipse_conic(centre, rx, ry, th, scale);
-            let (c, r, a) = k
+            let EllipseParams {
+                centre: c,
+                radii: r,
+                rotation: a,
+            } = k
                 .ellipse_params()
                 .unwrap_or_else(|| panic!("not an ellipse: {k:?}"));
             assert_point_close(c, centre, 1e-8 * (1.0 + centre.to_vec2().hypot()), "centre");

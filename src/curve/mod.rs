@@ -32,7 +32,7 @@ mod test_util;
 mod trace;
 
 pub use command::{PathCommand, ARC_FLATTEN_TOLERANCE};
-pub use conic::Conic;
+pub use conic::{Conic, EllipseParams, HyperbolaParams, ParabolaParams};
 pub use kind::CurveKind;
 pub use path::{level_curve_path, GUIDE_MAX_DISTANCE};
 pub use polynomial::{Polynomial, MAX_DEGREE};

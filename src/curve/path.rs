@@ -90,8 +90,7 @@ pub fn level_curve_path(
             CurveKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
             CurveKind::Hyperbola => {
                 let params = conic.hyperbola_params()?;
-                let (centre, _, angle) = params;
-                let axis = Vec2::from_angle(angle);
+                let (centre, axis) = (params.centre, Vec2::from_angle(params.rotation));
                 if (from - centre).dot(axis) * (to - centre).dot(axis) < 0.0 {
                     return None; // different branches
                 }

@@ -1,6 +1,7 @@
 //! Traces of a curve between two points: polylines on the curve with unit tangents, from a
 //! hyperbola's parametrisation or by marching along the curve.
 
+use super::conic::HyperbolaParams;
 use super::path::{ENDPOINT_MAX_DISTANCE, GUIDE_MAX_DISTANCE};
 use super::polynomial::Polynomial;
 use super::solve::{conic_foot, newton_to_curve, project, unit_tangent};
@@ -27,7 +28,7 @@ pub(super) struct Trace {
 }
 
 /// The trace of a hyperbola arc from its parametrisation `centre + R(θ)(σ a cosh s, b sinh s)`
-/// (`(centre, (a, b), θ)` as [`Conic::hyperbola_params`](super::Conic::hyperbola_params) gives them), with points at most [`HYPERBOLA_STEP`] apart in arc length
+/// (as [`Conic::hyperbola_params`](super::Conic::hyperbola_params) gives it), with points at most [`HYPERBOLA_STEP`] apart in arc length
 /// and [`HYPERBOLA_TURN`] in direction, and exact tangents, instead of marching along the
 /// curve: between two points of one branch the arc
 /// is unique. The parameter of a point of the curve is `asinh(v / b)`, `v` its coordinate
@@ -44,7 +45,11 @@ pub(super) struct Trace {
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x <= y)` also rejects NaN.
 pub(super) fn hyperbola_trace(
     poly: &Polynomial,
-    (centre, semi, angle): (Point, Vec2, f64),
+    HyperbolaParams {
+        centre,
+        semi_axes: semi,
+        rotation: angle,
+    }: HyperbolaParams,
     from: Point,
     to: Point,
     guide: &[Point],
