@@ -82,8 +82,9 @@ mod recognize;
 mod vectorize;
 
 pub use vectorize::{
-    stack_order, vectorize, ColourLayer, ColourVectorized, Fidelity, Layout, Options, Progress,
-    ProgressFn, Source, Stage, Vectorized,
+    stack_order, vectorize, Border, BorderGraph, BorderSource, ColourLayer, ColourVectorized,
+    Fidelity, Layout, Options, Partition, PartitionBorder, Progress, ProgressFn, Source, Stage,
+    Vectorized,
 };
 
 pub use bitmap::{
