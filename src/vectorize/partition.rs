@@ -25,8 +25,8 @@
 //!
 //! # Exact
 //! Every region's path is rendered alone by resvg in crispEdges and compared with the
-//! region's pixels. The borders near a wrong pixel (within two pixels) move on to their
-//! next drawing, and the check runs again, until every region is exact: at worst every
+//! region's pixels. The region's borders nearest a wrong pixel (beside it, else within one
+//! pixel, else two) move on to their next drawing, and the check runs again, until every region is exact: at worst every
 //! border is along its cracks, which is the pixel boundary itself. Each region exact alone
 //! means each pixel is painted by exactly one path.
 
@@ -291,19 +291,31 @@ pub(crate) fn partition(
             }
             let mut any = false;
             for &(x, y) in pixels {
-                for v in (y - 2).max(0)..(y + 3).min(i64::from(h)) {
-                    for u in (x - 2).max(0)..(x + 3).min(i64::from(w)) {
-                        for &b in &near[v as usize * w as usize + u as usize] {
-                            let b = b as usize;
-                            let border = &graph.borders[b];
-                            if (border.left == k || border.right == k)
-                                && moved[b].is_none()
-                                && drawn[b].source != BorderSource::Cracks
-                            {
-                                moved[b] = Some(false);
-                                any = true;
+                // The borders of region k beside the pixel, else within one pixel of it,
+                // else within two.
+                for r in 0..=2 {
+                    let mut found = false;
+                    for v in (y - r).max(0)..(y + r + 1).min(i64::from(h)) {
+                        for u in (x - r).max(0)..(x + r + 1).min(i64::from(w)) {
+                            for &b in &near[v as usize * w as usize + u as usize] {
+                                let b = b as usize;
+                                let border = &graph.borders[b];
+                                if (border.left == k || border.right == k)
+                                    && drawn[b].source != BorderSource::Cracks
+                                {
+                                    // Moved by this region or by the other side of the
+                                    // border: either way something near changes.
+                                    found = true;
+                                    any = true;
+                                    if moved[b].is_none() {
+                                        moved[b] = Some(false);
+                                    }
+                                }
                             }
                         }
+                    }
+                    if found {
+                        break;
                     }
                 }
             }
