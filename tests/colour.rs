@@ -383,9 +383,22 @@ fn partition_samples_are_exact_without_overlap() {
             .iter()
             .filter(|b| b.source != BorderSource::Cracks)
             .count();
+        let inner_cracks: Vec<usize> = p
+            .borders
+            .iter()
+            .filter(|b| b.source == BorderSource::Cracks && b.border.right != p.none + 1)
+            .map(|b| b.border.corners.len() - 1)
+            .collect();
         eprintln!(
-            "{path}: {} borders, {curves} cut from outlines, {} rounds, {} seam px",
+            "{path}: {} borders, {curves} cut from outlines, {} along the image edge, \
+             {} others along their cracks (longest {:?} cracks), {} rounds, {} seam px",
             p.borders.len(),
+            p.borders
+                .iter()
+                .filter(|b| b.border.right == p.none + 1)
+                .count(),
+            inner_cracks.len(),
+            inner_cracks.iter().max(),
             p.rounds,
             f.seams
         );
