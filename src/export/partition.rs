@@ -92,15 +92,10 @@ pub(crate) fn partition_json(
     regions: &[PartitionRegion<'_>],
     partition: &Partition,
     margin: i64,
+    (model, cover): (crate::model::Model, crate::decompose::Cover),
     width: u32,
     height: u32,
 ) -> String {
-    let Some(first) = regions.first() else {
-        return format!(
-            "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": \"partition\", \"regions\": [], \"borders\": []}}\n"
-        );
-    };
-    let model = first.decomposition.model;
     let basis = model.basis();
     let basis_ref: &dyn crate::model::Basis = &basis;
     let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
@@ -109,7 +104,7 @@ pub(crate) fn partition_json(
         s,
         "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": \"partition\",\n \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"regions\": [",
         quote(&model.name()),
-        quote(first.decomposition.cover.name()),
+        quote(cover.name()),
         names.join(",")
     );
     for (k, r) in regions.iter().enumerate() {

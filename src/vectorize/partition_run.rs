@@ -78,7 +78,14 @@ pub(super) fn run(
                 decomposition: &l.decomposition,
             })
             .collect();
-        partition_json(&regions, &part, MARGIN, w, h)
+        partition_json(
+            &regions,
+            &part,
+            MARGIN,
+            (options.model, options.cover),
+            w,
+            h,
+        )
     });
     let fidelity = match (&svg, options.fidelity) {
         (Some(svg), true) => Some(crate::fidelity::colour_fidelity(&svg.svg, image, None)?),
