@@ -378,6 +378,29 @@ fn partition_samples_are_exact_without_overlap() {
         assert_eq!(j["layout"], "partition");
         let borders = j["borders"].as_array().unwrap();
         assert_eq!(borders.len(), p.borders.len(), "{path}");
+        let regions = j["regions"].as_array().unwrap();
+        for (jb, pb) in borders.iter().zip(&p.borders) {
+            assert_eq!(jb["left"], pb.border.left);
+            assert_eq!(jb["drawn"], pb.source.name());
+            // The pieces it was cut from: pieces of that region's contours, with equations.
+            let pieces = jb["pieces"].as_array().unwrap();
+            let owner = match pb.source {
+                BorderSource::Left => Some(pb.border.left),
+                BorderSource::Right => Some(pb.border.right),
+                _ => None,
+            };
+            match owner {
+                None => assert!(pieces.is_empty()),
+                Some(k) => {
+                    assert!(!pieces.is_empty(), "{path}");
+                    for cp in pieces {
+                        let contour = &regions[k]["contours"][cp[0].as_u64().unwrap() as usize];
+                        let piece = &contour["pieces"][cp[1].as_u64().unwrap() as usize];
+                        assert!(piece["coefficients"].is_array(), "{path}: {cp}");
+                    }
+                }
+            }
+        }
         let curves = p
             .borders
             .iter()
