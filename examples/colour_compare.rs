@@ -13,6 +13,9 @@
 //!   rendered anti-aliased with alpha below 255).
 //! * Commands: path segments as usvg's parser (svgtypes) reads the `d` attributes, M and Z
 //!   included, implicit repeats counted.
+//! * Overlaps: pixels painted by more than one `<path>`, each path rendered alone in
+//!   crispEdges (0 for a partition; a stack's lower layers run under the upper ones on
+//!   purpose).
 //!
 //! With `--render DIR` first, each SVG's anti-aliased rendering is also written as
 //! `DIR/<svg name>.aa.png`: over magenta, so that any seam shows, enlarged 6 times
@@ -46,6 +49,28 @@ fn commands(svg: &str) -> usize {
         .filter_map(|n| n.attribute("d"))
         .map(|d| svgtypes::PathParser::from(d).filter(|s| s.is_ok()).count())
         .sum()
+}
+
+/// Pixels painted by more than one `<path>` of `svg`, each rendered alone in crispEdges.
+fn overlaps(svg: &str, w: u32, h: u32) -> u64 {
+    let doc = roxmltree::Document::parse(svg).expect("XML parses");
+    let root = doc.root_element();
+    let mut painted = vec![0u32; (w * h) as usize];
+    for node in root.descendants().filter(|n| n.has_tag_name("path")) {
+        let d = node.attribute("d").unwrap_or("");
+        let rule = node.attribute("fill-rule").unwrap_or("nonzero");
+        let alone = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+             viewBox=\"{}\"><path fill-rule=\"{rule}\" d=\"{d}\"/></svg>",
+            root.attribute("viewBox")
+                .map_or(format!("0 0 {w} {h}"), str::to_string)
+        );
+        let p = render(&alone, w, h, true);
+        for (i, c) in p.pixels().iter().enumerate() {
+            painted[i] += u32::from(c.alpha() > 0);
+        }
+    }
+    painted.iter().filter(|&&k| k > 1).count() as u64
 }
 
 fn measure(image: &ColourImage, svg: &str) -> (u64, u64) {
@@ -138,10 +163,12 @@ fn main() {
             img.save(Path::new(dir).join(format!("{stem}.aa.png")))
                 .expect("PNG written");
         }
+        let (w, h) = (regions.image.width(), regions.image.height());
         println!(
-            "{path}: differing {differing}, seams {seams}, commands {}, bytes {}",
+            "{path}: differing {differing}, seams {seams}, commands {}, bytes {}, overlaps {}",
             commands(&svg),
-            svg.len()
+            svg.len(),
+            overlaps(&svg, w, h)
         );
     }
 }

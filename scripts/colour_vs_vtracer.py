@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """layertrace --colors against vtracer --colormode color (stacked and cutout) on the colour
-samples: differing pixels, seam pixels, path commands, SVG bytes, time (README, "Colour
-images").
+samples, layertrace in both layouts (stack and partition): differing pixels, seam pixels,
+overlapping pixels, path commands, SVG bytes, time (README, "Colour images").
 
 Needs: `pip install vtracer` (the Python binding of vtracer 0.6), and
 `cargo build --release --bin layertrace --example colour_compare`.
@@ -46,18 +46,24 @@ def best_of(n, f):
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else tempfile.mkdtemp(prefix="colour_vs_vtracer")
     os.makedirs(out, exist_ok=True)
-    print("| image | N | tool | colours | differing px | seam px | commands | bytes | time (ms) |")
-    print("|---|--:|---|--:|--:|--:|--:|--:|--:|")
+    print("| image | N | tool | colours | differing px | seam px | overlap px | commands | bytes "
+          "| time (ms) |")
+    print("|---|--:|---|--:|--:|--:|--:|--:|--:|--:|")
     for image, n in CASES:
         name = os.path.splitext(os.path.basename(image))[0]
         svgs = {
             "layertrace stack": os.path.join(out, f"{name}.layertrace.svg"),
+            "layertrace partition": os.path.join(out, f"{name}.layertrace-partition.svg"),
             "vtracer stacked": os.path.join(out, f"{name}.vtracer-stacked.svg"),
             "vtracer cutout": os.path.join(out, f"{name}.vtracer-cutout.svg"),
         }
         times = {
             "layertrace stack": best_of(3, lambda: subprocess.run(
                 [LAYERTRACE, image, "--colors", str(n), "-o", svgs["layertrace stack"], "-q"],
+                check=True)),
+            "layertrace partition": best_of(3, lambda: subprocess.run(
+                [LAYERTRACE, image, "--colors", str(n), "--layout", "partition",
+                 "-o", svgs["layertrace partition"], "-q"],
                 check=True)),
             "vtracer stacked": best_of(3, lambda: vtracer.convert_image_to_svg_py(
                 image, svgs["vtracer stacked"], colormode="color", hierarchical="stacked")),
@@ -73,7 +79,7 @@ def main():
                 fills = len({a.split('"')[1] for a in f.read().split("fill=")[1:]})
             shown = colours if tool.startswith("layertrace") else f"{fills} fills"
             print(f"| {name} | {n} | {tool} | {shown} | {fields['differing']} | {fields['seams']} "
-                  f"| {fields['commands']} | {fields['bytes']} | {1e3 * times[tool]:.1f} |")
+                  f"| {fields['overlaps']} | {fields['commands']} | {fields['bytes']} | {1e3 * times[tool]:.1f} |")
 
 
 if __name__ == "__main__":

@@ -32,7 +32,10 @@
 //! at most `N` flat colours (the input's own when it has no more), [`stack_order`] orders
 //! them, each colour's layer goes through the stages above, [`layers_document`] draws one
 //! path per colour, [`colour_fidelity`] compares the rendering colour by colour and counts
-//! seams, [`colour_json`] writes every region's borders and equations.
+//! seams, [`colour_json`] writes every region's borders and equations. With
+//! [`Layout::Partition`] the cracks between regions are cut at their junctions into
+//! borders ([`BorderGraph`]), each drawn once and used by both of its regions
+//! ([`Partition`]), so no two paths overlap.
 //!
 //! ```
 //! use layertrace::{decompose, fidelity, svg_document, trace, Convention, Mask, Model,
@@ -82,8 +85,9 @@ mod recognize;
 mod vectorize;
 
 pub use vectorize::{
-    stack_order, vectorize, ColourLayer, ColourVectorized, Fidelity, Layout, Options, Progress,
-    ProgressFn, Source, Stage, Vectorized,
+    stack_order, vectorize, Border, BorderGraph, BorderSource, ColourLayer, ColourVectorized,
+    Fidelity, Layout, Options, Partition, PartitionBorder, Progress, ProgressFn, Source, Stage,
+    Vectorized,
 };
 
 pub use bitmap::{

@@ -5,7 +5,10 @@
 mod common;
 
 use common::{cli_in, repo};
-use layertrace::{decode_rgba, vectorize, Colour, Error, Options, OPAQUE_ALPHA};
+use layertrace::{
+    decode_rgba, vectorize, BorderSource, Colour, Error, Layout, Options, OPAQUE_ALPHA,
+};
+use proptest::prelude::*;
 use std::path::Path;
 
 /// (sample, --colors): every kind the issue names.
@@ -227,6 +230,30 @@ fn command_line() {
         .pixels()
         .all(|p| p.0 != [255, 0, 0] && p.0 != [0, 0, 255]));
     assert!(dir.path().join("l.json").exists());
+    // The partition layout: exact, one path per colour; its seams are counted too (the
+    // shared borders' hairlines when anti-aliased).
+    let (code, err) = cli_in(
+        dir.path(),
+        &[
+            logo,
+            "--colors",
+            "4",
+            "--layout",
+            "partition",
+            "-o",
+            "p.svg",
+            "--report",
+            "--json",
+            "p.json",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("fidelity: 0 differing pixels"), "{err}");
+    assert!(err.contains("layout partition"), "{err}");
+    let svg = std::fs::read_to_string(dir.path().join("p.svg")).unwrap();
+    assert_eq!(svg.matches("<path ").count(), 4);
+    let json = std::fs::read_to_string(dir.path().join("p.json")).unwrap();
+    assert!(json.contains("\"layout\": \"partition\""));
     // The same drawing as PDF: one fill per colour.
     let (code, err) = cli_in(dir.path(), &[logo, "--colors", "4", "-o", "l.pdf"]);
     assert_eq!(code, 0, "{err}");
@@ -239,7 +266,6 @@ fn command_line() {
         &[logo, "--colors", "257"],
         &[logo, "--colors", "4", "--threshold", "100"],
         &[logo, "--colors", "4", "--alpha"],
-        &[logo, "--colors", "4", "--layout", "partition"],
         &[logo, "--layout", "stack"],
     ] {
         let (code, err) = cli_in(dir.path(), args);
@@ -254,4 +280,198 @@ fn command_line() {
     let (code, err) = cli_in(dir.path(), &["w.png", "-o", "w.svg", "--alpha", "--report"]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("fidelity: 0 differing"), "{err}");
+}
+
+/// The `<path>` elements of an SVG, each alone in a document of the same size.
+fn each_path_alone(svg: &str) -> Vec<String> {
+    let header = &svg[..svg.find('\n').unwrap() + 1];
+    svg.lines()
+        .filter(|l| l.starts_with("<path "))
+        .map(|l| format!("{header}{l}\n</svg>\n"))
+        .collect()
+}
+
+/// Every pixel of a region is painted by its own colour's path and by no other, every
+/// pixel of no region by none (each path rendered alone in crispEdges).
+fn assert_partition(svg: &str, c: &layertrace::ColourVectorized, what: &str) {
+    let image = &c.regions.image;
+    let (w, h) = (image.width(), image.height());
+    let palette: Vec<String> = image.palette().iter().map(|c| c.to_string()).collect();
+    let mut painted = vec![0u32; (w * h) as usize];
+    for doc in each_path_alone(svg) {
+        let fill = &doc[doc.find("<path fill=\"").unwrap() + 12..][..7];
+        let k = palette.iter().position(|p| p == fill).unwrap();
+        let mask = layertrace::rasterize_svg(&doc, w, h).unwrap();
+        for y in 0..i64::from(h) {
+            for x in 0..i64::from(w) {
+                if mask.get(x, y) {
+                    painted[(y * i64::from(w) + x) as usize] += 1;
+                    assert_eq!(
+                        image.get(x, y),
+                        Some(k),
+                        "{what}: ({x}, {y}) painted {fill}"
+                    );
+                }
+            }
+        }
+    }
+    for y in 0..i64::from(h) {
+        for x in 0..i64::from(w) {
+            let want = u32::from(image.get(x, y).is_some());
+            assert_eq!(
+                painted[(y * i64::from(w) + x) as usize],
+                want,
+                "{what}: ({x}, {y})"
+            );
+        }
+    }
+}
+
+#[test]
+fn partition_samples_are_exact_without_overlap() {
+    for (path, n) in CASES {
+        let options = Options::default()
+            .colors(n)
+            .layout(Layout::Partition)
+            .fidelity(true)
+            .json(true);
+        let v = vectorize(&repo(path), &options).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let c = v.colour.as_ref().unwrap();
+        let f = c.fidelity.as_ref().unwrap();
+        assert_eq!(f.differing, 0, "{path}: {:?}", f.colours);
+        let svg = v.svg_text();
+        // One path per colour, in palette order.
+        let fills: Vec<&str> = svg
+            .match_indices("<path fill=\"")
+            .map(|(i, m)| &svg[i + m.len()..i + m.len() + 7])
+            .collect();
+        let palette: Vec<String> = c
+            .regions
+            .image
+            .palette()
+            .iter()
+            .map(|c| c.to_string())
+            .collect();
+        assert_eq!(fills, palette, "{path}");
+        assert_partition(svg, c, path);
+        let p = c.partition.as_ref().unwrap();
+        // Every border is drawn once: used forward by its left region, reversed by its
+        // right one when that is a region, and by no other loop.
+        let mut uses = vec![(0, 0); p.borders.len()];
+        for (k, loops) in p.loops.iter().enumerate() {
+            for &(b, reversed) in loops.iter().flatten() {
+                let border = &p.borders[b].border;
+                assert_eq!(if reversed { border.right } else { border.left }, k);
+                if reversed {
+                    uses[b].1 += 1;
+                } else {
+                    uses[b].0 += 1;
+                }
+            }
+        }
+        for (b, u) in p.borders.iter().zip(&uses) {
+            let shared = b.border.right < p.none;
+            assert_eq!(*u, (1, usize::from(shared)), "{path}");
+        }
+        // The JSON lists the same borders, each with its two sides.
+        let j: serde_json::Value = serde_json::from_str(v.json.as_ref().unwrap()).unwrap();
+        assert_eq!(j["layout"], "partition");
+        let borders = j["borders"].as_array().unwrap();
+        assert_eq!(borders.len(), p.borders.len(), "{path}");
+        let regions = j["regions"].as_array().unwrap();
+        for (jb, pb) in borders.iter().zip(&p.borders) {
+            assert_eq!(jb["left"], pb.border.left);
+            assert_eq!(jb["drawn"], pb.source.name());
+            // The pieces it was cut from: pieces of that region's contours, with equations.
+            let pieces = jb["pieces"].as_array().unwrap();
+            let owner = match pb.source {
+                BorderSource::Left => Some(pb.border.left),
+                BorderSource::Right => Some(pb.border.right),
+                _ => None,
+            };
+            match owner {
+                None => assert!(pieces.is_empty()),
+                Some(k) => {
+                    assert!(!pieces.is_empty(), "{path}");
+                    for cp in pieces {
+                        let contour = &regions[k]["contours"][cp[0].as_u64().unwrap() as usize];
+                        let piece = &contour["pieces"][cp[1].as_u64().unwrap() as usize];
+                        assert!(piece["coefficients"].is_array(), "{path}: {cp}");
+                    }
+                }
+            }
+        }
+        let curves = p
+            .borders
+            .iter()
+            .filter(|b| b.source != BorderSource::Cracks)
+            .count();
+        let inner_cracks: Vec<usize> = p
+            .borders
+            .iter()
+            .filter(|b| b.source == BorderSource::Cracks && b.border.right != p.none + 1)
+            .map(|b| b.border.corners.len() - 1)
+            .collect();
+        eprintln!(
+            "{path}: {} borders, {curves} cut from outlines, {} along the image edge, \
+             {} others along their cracks (longest {:?} cracks), {} rounds, {} seam px",
+            p.borders.len(),
+            p.borders
+                .iter()
+                .filter(|b| b.border.right == p.none + 1)
+                .count(),
+            inner_cracks.len(),
+            inner_cracks.iter().max(),
+            p.rounds,
+            f.seams
+        );
+        assert!(curves > 0, "{path}");
+    }
+}
+
+fn random_png(w: u32, h: u32, px: &[u8]) -> Vec<u8> {
+    let palette = [
+        [0, 0, 0, 0],
+        [230, 40, 40, 255],
+        [40, 90, 220, 255],
+        [250, 250, 250, 255],
+        [20, 160, 60, 255],
+    ];
+    let img = image::RgbaImage::from_fn(w, h, |x, y| {
+        image::Rgba(palette[usize::from(px[(y * w + x) as usize] % 5)])
+    });
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png).unwrap();
+    out.into_inner()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// Random images of four colours and transparency, in blobs or noise: the partition
+    /// paints every pixel of a region with exactly one path, its own, and no other pixel.
+    #[test]
+    fn partition_regions_do_not_overlap(
+        (w, h, px) in (1u32..14, 1u32..14).prop_flat_map(|(w, h)| {
+            (Just(w), Just(h), prop::collection::vec(0u8..5, (w * h) as usize))
+        }),
+        blobs in any::<bool>(),
+    ) {
+        // Blobs: each pixel takes its left neighbour's value in most rows, for longer borders.
+        let px: Vec<u8> = if blobs {
+            let mut v = px.clone();
+            for i in 0..v.len() {
+                if i % w as usize > 0 && v[i] % 3 != 0 {
+                    v[i] = v[i - 1];
+                }
+            }
+            v
+        } else {
+            px
+        };
+        let options = Options::default().colors(5).layout(Layout::Partition).fidelity(true);
+        let v = vectorize(&random_png(w, h, &px), &options).unwrap();
+        let c = v.colour.as_ref().unwrap();
+        prop_assert_eq!(c.fidelity.as_ref().unwrap().differing, 0);
+        assert_partition(v.svg_text(), c, "random");
+    }
 }

@@ -170,8 +170,11 @@ pub struct Args {
 
     /// How --colors draws the regions: 'stack' (each colour's path also covers the colours
     /// drawn after it, which paint over it: exact in crispEdges, and no background shows
-    /// between regions when anti-aliased).
-    #[arg(long, value_name = "stack", default_value = "stack", value_parser = ["stack"],
+    /// between regions when anti-aliased) or 'partition' (regions side by side, every
+    /// shared border drawn once and used by both: no overlap, for editors and GIS; exact in
+    /// crispEdges, but anti-aliased renderers show faint hairlines along shared borders).
+    #[arg(long, value_name = "stack|partition", default_value = "stack",
+          value_parser = ["stack", "partition"],
           requires = "colors")]
     pub layout: String,
 

@@ -44,7 +44,7 @@ pub struct JsonHeader {
     pub invert: bool,
 }
 
-fn quote(s: &str) -> String {
+pub(crate) fn quote(s: &str) -> String {
     serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_string())
 }
 
@@ -74,7 +74,7 @@ pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
 /// Appends the contours of `d`, each with its pieces (the members of `"contours"`, one
 /// contour per line, each line starting with a newline and two spaces), every point and
 /// origin moved by `-margin` in x and y (the equations, taken at the origin, are the same).
-fn write_contours(d: &Decomposition, margin: i64, s: &mut String) {
+pub(crate) fn write_contours(d: &Decomposition, margin: i64, s: &mut String) {
     let basis = d.model.basis();
     let basis_ref: &dyn crate::model::Basis = &basis;
     for (ci, (c, pieces)) in d.contours.iter().zip(&d.pieces).enumerate() {

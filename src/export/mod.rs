@@ -6,6 +6,7 @@ mod eps;
 pub mod format;
 pub mod json;
 pub mod layers;
+pub mod partition;
 mod pdf;
 pub mod picture;
 pub mod svg;

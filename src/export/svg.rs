@@ -159,7 +159,7 @@ fn push_number(v: f64, precision: usize, after_number: bool, s: &mut String) {
 ///
 /// Every absolute point (`M`, `A`) is written moved by `-shift` in x and y (an integer
 /// shift keeps the points exact and the relative numbers the same).
-fn write_path_data(cp: &ContourPath, precision: usize, shift: f64, s: &mut String) {
+pub(crate) fn write_path_data(cp: &ContourPath, precision: usize, shift: f64, s: &mut String) {
     if cp.commands.is_empty() {
         return;
     }
@@ -223,7 +223,7 @@ fn write_path_data(cp: &ContourPath, precision: usize, shift: f64, s: &mut Strin
 }
 
 /// Drops a final line back to the start: `Z` draws it.
-fn drop_closing_line(cp: &mut ContourPath) {
+pub(crate) fn drop_closing_line(cp: &mut ContourPath) {
     if cp.commands.len() > 2 && cp.commands.last() == Some(&PathCommand::Line(cp.start)) {
         cp.commands.pop();
     }

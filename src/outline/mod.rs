@@ -31,6 +31,7 @@ mod band_path;
 mod band_polygon;
 mod builder;
 mod cracks;
+mod cut;
 mod joins;
 mod path;
 mod render_check;
@@ -40,6 +41,7 @@ mod stretch;
 mod vertices;
 
 pub(crate) use band_path::{band_contour_path, has_staircase};
+pub(crate) use cut::{cut, Loop};
 pub use joins::JUNCTION_MAX_DISTANCE;
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
 pub use render_check::EdgeClipping;

@@ -62,21 +62,26 @@ pub struct ColourLayer {
 pub struct ColourVectorized {
     /// The regions (the quantized image when the input had more colours than asked).
     pub regions: Regions,
-    /// The layers in drawing order.
+    /// The layers in drawing order. With [`Layout::Partition`](super::Layout::Partition):
+    /// one per colour in palette order, each the colour's own pixels, and its
+    /// decomposition that of their borders (padded the same way).
     pub layers: Vec<ColourLayer>,
     /// The comparison with the regions, if [`Options::fidelity`] and an SVG were asked.
     pub fidelity: Option<ColourFidelity>,
+    /// With [`Layout::Partition`](super::Layout::Partition): the borders, each drawn once,
+    /// and each region's loops of them.
+    pub partition: Option<super::Partition>,
 }
 
 /// What [`run`] returns to [`vectorize`](super::vectorize).
-pub(super) struct ColourRun {
-    pub(super) colour: ColourVectorized,
-    pub(super) svg: Option<SvgOutput>,
-    pub(super) json: Option<String>,
+pub(crate) struct ColourRun {
+    pub(crate) colour: ColourVectorized,
+    pub(crate) svg: Option<SvgOutput>,
+    pub(crate) json: Option<String>,
     /// Every layer's contours and pieces, in drawing order.
-    pub(super) merged: Decomposition,
+    pub(crate) merged: Decomposition,
     /// The pixels of every region.
-    pub(super) mask: Mask,
+    pub(crate) mask: Mask,
 }
 
 /// Decodes the image and vectorizes it in `colors` colours.
@@ -99,6 +104,9 @@ pub(super) fn run(
     };
     let regions = colour_regions(&rgba, colors);
     drop(rgba);
+    if options.layout == super::Layout::Partition {
+        return super::partition_run::run(name, regions, options);
+    }
     let image = &regions.image;
     let order = stack_order(image);
     let counts = image.counts();
@@ -201,6 +209,7 @@ pub(super) fn run(
             regions,
             layers,
             fidelity,
+            partition: None,
         },
         svg,
         json,
@@ -210,11 +219,11 @@ pub(super) fn run(
 }
 
 /// The margin of the padded masks.
-const MARGIN: i64 = 1;
+pub(super) const MARGIN: i64 = 1;
 
 /// `mask` with a margin of [`MARGIN`] pixel on every side, each margin pixel a copy of the
 /// nearest pixel of the image.
-fn pad(mask: &Mask) -> Mask {
+pub(super) fn pad(mask: &Mask) -> Mask {
     let (w, h) = (i64::from(mask.width()), i64::from(mask.height()));
     let m = MARGIN as u32;
     Mask::from_fn(mask.width() + 2 * m, mask.height() + 2 * m, |x, y| {

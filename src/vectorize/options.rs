@@ -40,13 +40,19 @@ pub enum Layout {
     /// anti-aliased.
     #[default]
     Stack,
+    /// One path per colour, the regions side by side: every border between two regions
+    /// is drawn once and used by both (reversed by one), so no two paths overlap; the
+    /// image's edge is drawn along it. Exact in crispEdges; anti-aliased renderers show a
+    /// faint hairline along shared borders (each side is blended with the background).
+    Partition,
 }
 
 impl Layout {
-    /// The name on the command line and in the JSON: `stack`.
+    /// The name on the command line and in the JSON: `stack` or `partition`.
     pub fn name(self) -> &'static str {
         match self {
             Layout::Stack => "stack",
+            Layout::Partition => "partition",
         }
     }
 }

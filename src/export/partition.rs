@@ -1,0 +1,207 @@
+//! The SVG and JSON of a partition (`--layout partition`): one `<path>` per colour made of
+//! the shared borders, and the borders with their two regions and their pieces.
+//!
+//! # SVG
+//! The document of [`layers_document`](super::layers::layers_document) (same header, same
+//! compact path data, `fill-rule="nonzero"`), one `<path fill="#rrggbb">` per region in
+//! palette order (decreasing pixel count). The paths do not overlap, so the order does not
+//! change what is painted. Each region's loops wind once round its pixels (holes are loops
+//! the other way round), so `nonzero` and `evenodd` paint the same.
+//!
+//! # JSON
+//! `layertrace-colour/1` with `"layout": "partition"`: each region's colour, pixel count
+//! and the contours of its own pixels with their pieces and equations (as
+//! `layertrace-decomposition/2`, in image coordinates), its `"loops"` (lists of
+//! `{"border": i, "reversed": bool}`), and a top-level `"borders"` list: each border's two
+//! sides (`"left"`, a region index; `"right"`, a region index, `"none"` for no region or
+//! `"outside"` for the image's outside), its corners from junction to junction
+//! (`"corners"`, `[x, y]` crack corners, the first repeated at the end of a closed
+//! border), which outline it was cut from (`"drawn"`: `left`, `right` or `cracks`) and the
+//! pieces of that region's contours beside it (`"pieces"`: `[contour, piece]` indices into
+//! that region's `"contours"`, whose equations they are).
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use super::json::{quote, write_contours};
+use super::svg::{drop_closing_line, write_path_data, xml_escape};
+use crate::decompose::Decomposition;
+use crate::outline::{CommandCounts, ContourPath};
+use crate::vectorize::{BorderSource, Partition};
+
+/// Per crack-side pixel: the `(contour, piece)` pairs of a region's decomposition there.
+type PiecesAt = HashMap<(i64, i64), Vec<(usize, usize)>>;
+
+/// The path data of closed paths on the `2^-grid` grid, and their command counts.
+pub(crate) fn path_data(paths: &[ContourPath], grid: u8) -> (String, CommandCounts) {
+    let mut s = String::new();
+    let mut counts = CommandCounts::default();
+    for p in paths {
+        let mut p = p.clone();
+        drop_closing_line(&mut p);
+        counts.add(&p.counts());
+        write_path_data(&p, usize::from(grid), 0.0, &mut s);
+    }
+    (s, counts)
+}
+
+fn header(width: u32, height: u32) -> String {
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
+         height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
+    )
+}
+
+/// A document with one black path of data `d` (the render check's).
+pub(crate) fn single_path_document(d: &(String, CommandCounts), width: u32, height: u32) -> String {
+    let mut svg = header(width, height);
+    if !d.0.is_empty() {
+        let _ = writeln!(svg, "<path fill-rule=\"nonzero\" d=\"{}\"/>", d.0);
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// The document of the regions `(fill, path data)` in order; empty paths are not written.
+pub(crate) fn partition_document(regions: &[(String, String)], width: u32, height: u32) -> String {
+    let mut svg = header(width, height);
+    for (fill, d) in regions {
+        if !d.is_empty() {
+            let _ = writeln!(
+                svg,
+                "<path fill=\"{}\" fill-rule=\"nonzero\" d=\"{}\"/>",
+                xml_escape(fill),
+                d
+            );
+        }
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// One region of [`partition_json`].
+pub(crate) struct PartitionRegion<'a> {
+    pub(crate) colour: &'a str,
+    pub(crate) pixels: u64,
+    /// Its own pixels' contours (padded by `margin`).
+    pub(crate) decomposition: &'a Decomposition,
+}
+
+/// The JSON text of a partition (see the module documentation).
+pub(crate) fn partition_json(
+    regions: &[PartitionRegion<'_>],
+    partition: &Partition,
+    margin: i64,
+    (model, cover): (crate::model::Model, crate::decompose::Cover),
+    width: u32,
+    height: u32,
+) -> String {
+    let basis = model.basis();
+    let basis_ref: &dyn crate::model::Basis = &basis;
+    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": \"partition\",\n \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"regions\": [",
+        quote(&model.name()),
+        quote(cover.name()),
+        names.join(",")
+    );
+    for (k, r) in regions.iter().enumerate() {
+        if k > 0 {
+            s.push(',');
+        }
+        let _ = write!(
+            s,
+            "\n {{\"colour\": {}, \"pixels\": {}, \"loops\": [",
+            quote(r.colour),
+            r.pixels
+        );
+        for (i, l) in partition.loops[k].iter().enumerate() {
+            if i > 0 {
+                s.push(',');
+            }
+            let items: Vec<String> = l
+                .iter()
+                .map(|&(b, rev)| format!("{{\"border\": {b}, \"reversed\": {rev}}}"))
+                .collect();
+            let _ = write!(s, "[{}]", items.join(","));
+        }
+        s.push_str("],\n  \"contours\": [");
+        write_contours(r.decomposition, margin, &mut s);
+        s.push_str("\n ]}");
+    }
+    s.push_str("\n ],\n \"borders\": [");
+    // Per region: the pieces beside each of its contour pixels (image coordinates).
+    let mut beside: Vec<PiecesAt> = Vec::new();
+    for r in regions {
+        let mut m = PiecesAt::new();
+        for (ci, (c, pieces)) in r
+            .decomposition
+            .contours
+            .iter()
+            .zip(&r.decomposition.pieces)
+            .enumerate()
+        {
+            for (pi, p) in pieces.iter().enumerate() {
+                for q in &c.points[p.first..=p.last.min(c.points.len() - 1)] {
+                    let key = (i64::from(q.x) - margin, i64::from(q.y) - margin);
+                    let v = m.entry(key).or_default();
+                    if v.last() != Some(&(ci, pi)) {
+                        v.push((ci, pi));
+                    }
+                }
+            }
+        }
+        beside.push(m);
+    }
+    let side = |l: usize| -> String {
+        if l < partition.none {
+            l.to_string()
+        } else if l == partition.none {
+            "\"none\"".into()
+        } else {
+            "\"outside\"".into()
+        }
+    };
+    for (i, pb) in partition.borders.iter().enumerate() {
+        if i > 0 {
+            s.push(',');
+        }
+        let b = &pb.border;
+        let corners: Vec<String> = b
+            .corners
+            .iter()
+            .map(|(x, y)| format!("[{x},{y}]"))
+            .collect();
+        let owner = match pb.source {
+            BorderSource::Left => Some((b.left, 0)),
+            BorderSource::Right => Some((b.right, 1)),
+            BorderSource::Cracks => None,
+        };
+        let mut pieces: Vec<(usize, usize)> = Vec::new();
+        if let Some((region, which)) = owner {
+            for c in b.corners.windows(2) {
+                let px = crate::vectorize::crack_sides(c[0], c[1])[which];
+                if let Some(v) = beside[region].get(&px) {
+                    pieces.extend(v.iter().copied());
+                }
+            }
+        }
+        pieces.sort_unstable();
+        pieces.dedup();
+        let pieces: Vec<String> = pieces.iter().map(|(c, p)| format!("[{c},{p}]")).collect();
+        let _ = write!(
+            s,
+            "\n  {{\"left\": {}, \"right\": {}, \"closed\": {}, \"drawn\": \"{}\", \"pieces\": [{}],\n   \"corners\": [{}]}}",
+            side(b.left),
+            side(b.right),
+            b.closed,
+            pb.source.name(),
+            pieces.join(","),
+            corners.join(",")
+        );
+    }
+    s.push_str("\n ]}\n");
+    s
+}

@@ -1,0 +1,122 @@
+//! `--colors N --layout partition` from the regions to the outputs: every region's own
+//! pixels traced and decomposed, the shared borders drawn once (see [`super::partition`]),
+//! then the SVG, the JSON and the fidelity asked for.
+
+use crate::decompose::Decomposition;
+use crate::error::Error;
+
+/// The partition layout of [`super::colour::run`]: every region's own pixels traced and
+/// decomposed, the borders drawn once, the SVG, JSON and fidelity asked.
+pub(super) fn run(
+    name: &std::path::Path,
+    regions: crate::bitmap::Regions,
+    options: &super::Options,
+) -> Result<super::colour::ColourRun, Error> {
+    use super::colour::{pad, ColourLayer, ColourRun, ColourVectorized, MARGIN};
+    use crate::contour::{trace, Convention};
+    use crate::decompose::{decompose_reporting, OutlierRule};
+    use crate::export::partition::{
+        partition_document, partition_json, path_data, PartitionRegion,
+    };
+
+    if options.smooth.is_some() {
+        return Err(Error::Arguments(
+            "smooth: not with --layout partition (its borders are exact)".into(),
+        ));
+    }
+    let image = &regions.image;
+    let counts = image.counts();
+    let mut layers = Vec::with_capacity(image.palette().len());
+    for (k, &colour) in image.palette().iter().enumerate() {
+        let mask = image.mask_where(|c| c == k);
+        let contours = trace(&pad(&mask), Convention::Default);
+        super::check_memory(name, options, &contours, &mask)?;
+        let decomposition = decompose_reporting(
+            contours,
+            options.model,
+            OutlierRule::NotInPiece,
+            options.budget,
+            options.cover,
+            &|_| {},
+        );
+        layers.push(ColourLayer {
+            colour,
+            pixels: counts[k],
+            mask,
+            decomposition,
+        });
+    }
+    let outline = options
+        .svg
+        .as_ref()
+        .map(crate::export::svg::outline_options)
+        .unwrap_or_default();
+    let decompositions: Vec<&Decomposition> = layers.iter().map(|l| &l.decomposition).collect();
+    let part = super::partition::partition(image, &decompositions, MARGIN, &outline)?;
+    let (w, h) = (image.width(), image.height());
+    let fills: Vec<String> = layers.iter().map(|l| l.colour.to_string()).collect();
+    let svg = options.svg.as_ref().map(|o| {
+        let mut commands = crate::outline::CommandCounts::default();
+        let data: Vec<(String, String)> = (0..layers.len())
+            .map(|k| {
+                let (d, c) = path_data(&part.region_paths(k), o.grid.min(crate::outline::MAX_GRID));
+                commands.add(&c);
+                (fills[k].clone(), d)
+            })
+            .collect();
+        let mut out = crate::export::svg::empty_output(partition_document(&data, w, h));
+        out.commands = commands;
+        out
+    });
+    let json = options.json.then(|| {
+        let regions: Vec<PartitionRegion<'_>> = layers
+            .iter()
+            .zip(&fills)
+            .map(|(l, colour)| PartitionRegion {
+                colour,
+                pixels: l.pixels,
+                decomposition: &l.decomposition,
+            })
+            .collect();
+        partition_json(
+            &regions,
+            &part,
+            MARGIN,
+            (options.model, options.cover),
+            w,
+            h,
+        )
+    });
+    let fidelity = match (&svg, options.fidelity) {
+        (Some(svg), true) => Some(crate::fidelity::colour_fidelity(&svg.svg, image, None)?),
+        _ => None,
+    };
+    let mut merged = Decomposition {
+        model: options.model,
+        contours: Vec::new(),
+        pieces: Vec::new(),
+        rule: OutlierRule::NotInPiece,
+        cover: options.cover,
+        stats: Default::default(),
+    };
+    for l in &layers {
+        merged
+            .contours
+            .extend(l.decomposition.contours.iter().cloned());
+        merged.pieces.extend(l.decomposition.pieces.iter().cloned());
+        merged.stats.add(&l.decomposition.stats);
+    }
+    let mask = image.mask_where(|_| true);
+    Ok(ColourRun {
+        colour: ColourVectorized {
+            regions,
+            layers,
+            fidelity,
+            partition: Some(part),
+        },
+        svg,
+        json,
+        merged,
+        mask,
+    })
+}
