@@ -161,6 +161,19 @@ fn colours_and_smooth_reach_the_library() {
     }
     assert!(v["diff_png"].as_str().unwrap().starts_with("iVBORw0KGgo"));
     assert_eq!(v["beyond"], serde_json::Value::Null);
+    // The partition layout.
+    let (status, body) = request(
+        &server.addr,
+        "POST /api/vectorize?colors=4&layout=partition HTTP/1.1",
+        &logo,
+    );
+    assert_eq!(status, 200, "{body}");
+    let v: serde_json::Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(v["differing"], 0);
+    assert!(v["json"]
+        .as_str()
+        .unwrap()
+        .contains(r#""layout": "partition""#));
     // Smooth, one colour: pixels change only within ν.
     let (status, body) = request(
         &server.addr,

@@ -47,6 +47,7 @@ async function convert() {
     turdsize: $("turdsize").value || "0",
     invert: $("invert").checked ? "1" : "0",
     colors: $("colors").value.trim(),
+    layout: $("layout").value,
     smooth: $("smooth").value.trim(),
     alpha: $("alpha").checked ? "1" : "0",
     name: file.name,
@@ -180,6 +181,7 @@ document.addEventListener("DOMContentLoaded", () => {
   const colourFields = () => {
     const colour = $("colors").value.trim() !== "";
     for (const id of ["threshold", "invert", "turdsize", "alpha"]) $(id).disabled = colour;
+    $("layout").disabled = !colour;
   };
   $("colors").addEventListener("input", colourFields);
   colourFields();

@@ -203,7 +203,10 @@ def vectorize(
             pixels belong to no region. Not with ``threshold``, ``invert``, ``turdsize``,
             ``alpha`` or a boolean mask.
         layout: how ``colors`` draws the regions: ``"stack"`` (each colour's path also
-            covers the colours drawn after it: exact, and no seams when anti-aliased).
+            covers the colours drawn after it: exact, and no seams when anti-aliased) or
+            ``"partition"`` (every border between two regions decomposed once and used by
+            both: no overlap, for editors; anti-aliased renderers show hairlines along the
+            shared borders). Both are exact in crispEdges.
         alpha: the alpha channel is the shape (alpha at least 128), whatever its colour,
             for one-colour icons on transparency such as a white logo.
         smooth: a distance NU in pixels (0 < NU <= 16): pixels within NU of a border

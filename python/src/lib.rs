@@ -76,11 +76,12 @@ fn model(s: &str) -> Result<Model, String> {
     }
 }
 
-/// `stack` (the only layout so far), as the command line's `--layout`.
+/// `stack` or `partition`, as the command line's `--layout`.
 fn layout(s: &str) -> Result<Layout, String> {
     match s {
         "stack" => Ok(Layout::Stack),
-        other => Err(format!("unknown layout '{other}': expected stack")),
+        "partition" => Ok(Layout::Partition),
+        other => Err(format!("unknown layout '{other}': expected stack or partition")),
     }
 }
 

@@ -47,6 +47,16 @@ def test_colour_samples_are_exact_and_seamless(name, colors):
     assert r.diff_png.startswith(b"\x89PNG")
 
 
+@pytest.mark.parametrize("name,colors", COLOUR_CASES[:2])
+def test_partition_is_exact_too(name, colors):
+    stack = layertrace.vectorize(SAMPLES / name, colors=colors)
+    r = layertrace.vectorize(SAMPLES / name, colors=colors, layout="partition")
+    assert r.decomposition["layout"] == "partition"
+    assert r.fidelity == 0 and all(c["differing"] == 0 for c in r.colours)
+    assert sorted(fills(r.svg)) == sorted(fills(stack.svg))
+    assert r.decomposition["borders"]
+
+
 def test_a_numpy_flag_keeps_its_own_colours():
     h, w = 40, 60
     flag = np.zeros((h, w, 3), dtype=np.uint8)

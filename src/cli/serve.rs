@@ -11,7 +11,7 @@
 
 use clap::Parser;
 use layertrace::{
-    colour_diff_image, diff_image, png_bytes, vectorize, Cover, Error, Options, Vectorized,
+    colour_diff_image, diff_image, png_bytes, vectorize, Cover, Error, Layout, Options, Vectorized,
     MAX_BAND,
 };
 use std::io::Read;
@@ -288,6 +288,17 @@ fn options(query: &str, state: &State) -> Result<(Options, String), String> {
                 options = options.smooth(nu)
             }
             "alpha" => options = options.alpha(matches!(value.as_str(), "1" | "true" | "on")),
+            "layout" => {
+                options = options.layout(match value.as_str() {
+                    "" | "stack" => Layout::Stack,
+                    "partition" => Layout::Partition,
+                    other => {
+                        return Err(format!(
+                            "unknown layout '{other}': expected stack or partition"
+                        ))
+                    }
+                })
+            }
             "name" => {
                 name = value
                     .chars()
