@@ -29,7 +29,7 @@
 //! recognize` on the command line).
 //!
 //! Colour images ([`Options::colors`], `--colors N`): [`colour_regions`] makes regions of
-//! at most `N` flat colours (the input's own when it has no more), [`stack_order`] orders
+//! at most `N` flat colours (the input's own when it has no more), the stack order orders
 //! them, each colour's layer goes through the stages above, [`layers_document`] draws one
 //! path per colour, [`colour_fidelity`] compares the rendering colour by colour and counts
 //! seams, [`colour_json`] writes every region's borders and equations. With
@@ -85,9 +85,8 @@ mod recognize;
 mod vectorize;
 
 pub use vectorize::{
-    stack_order, vectorize, Border, BorderGraph, BorderSource, ColourLayer, ColourVectorized,
-    Fidelity, Layout, Options, Partition, PartitionBorder, Progress, ProgressFn, Source, Stage,
-    Vectorized,
+    vectorize, Border, BorderGraph, BorderSource, ColourLayer, ColourVectorized, Fidelity, Layout,
+    Options, Partition, PartitionBorder, Progress, ProgressFn, Source, Stage, Vectorized,
 };
 
 pub use bitmap::{
@@ -101,19 +100,15 @@ pub use bitmap::{
 };
 pub use contour::{trace, Contour, Convention};
 pub use curve::{
-    intersect_near, level_curve_path, project, Conic, CurveKind, EllipseParams, HyperbolaParams,
-    ParabolaParams, PathCommand, Polynomial, ARC_FLATTEN_TOLERANCE, GUIDE_MAX_DISTANCE, MAX_DEGREE,
+    level_curve_path, Conic, CurveKind, EllipseParams, HyperbolaParams, ParabolaParams,
+    PathCommand, Polynomial, MAX_DEGREE,
 };
 pub use decompose::{
-    decompose, decompose_cover, decompose_points, decompose_points_within, decompose_within,
-    neighbour_sides, optimal_points, piece_outliers, Cover, Cut, Decomposition, OutlierRule, Piece,
-    WorkBudget,
+    decompose, decompose_cover, decompose_points, decompose_within, piece_outliers, Cover, Cut,
+    Decomposition, OutlierRule, Piece, WorkBudget,
 };
 pub use error::Error;
-pub use estimate::{
-    work_estimate, WorkEstimate, DRAW_BYTES_PER_POINT, FIDELITY_BYTES_PER_SVG_BYTE,
-    SVG_BYTES_PER_CONTOUR, SVG_BYTES_PER_POINT,
-};
+pub use estimate::{work_estimate, WorkEstimate};
 pub use export::format::{document_bytes, Format, PictureFormat};
 pub use export::json::{colour_json, decomposition_json, JsonHeader, JsonRegion};
 pub use export::layers::{layers_document, SvgLayer};
@@ -124,9 +119,7 @@ pub use fidelity::{
     BandCheck, FidelityReport, StaircaseCount,
 };
 pub use fidelity::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
-pub use level::{
-    border_polynomial, boundary_level, curve_kind, level_polynomial, piece_kind, polynomial_of,
-};
+pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind};
 pub use model::{Basis, Model, ParseModelError, PolynomialBasis, Terms, MAX_POLY_DEGREE};
 /// The exact integers and fractions of [`Layer`] and [`Witness::exact_weights`].
 pub use num_bigint::BigInt;
@@ -134,7 +127,7 @@ pub use num_bigint::BigInt;
 pub use num_rational::BigRational;
 pub use outline::{
     contour_path, CommandCounts, ContourPath, EdgeClipping, FallbackCounts, JoinCounts,
-    OutlineOptions, JUNCTION_MAX_DISTANCE, MAX_GRID,
+    OutlineOptions, MAX_GRID,
 };
 pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
 pub use pixel::Pixel;

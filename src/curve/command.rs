@@ -51,7 +51,7 @@ impl PathCommand {
     /// Converts to kurbo path elements (without the initial `MoveTo`), starting at `start`.
     ///
     /// Arcs go through [`kurbo::Arc::from_svg_arc`] (with `from` replaced by `start`) and are
-    /// approximated by cubics within [`ARC_FLATTEN_TOLERANCE`]; an arc that SVG treats as a
+    /// approximated by cubics within 0.001 px; an arc that SVG treats as a
     /// straight line becomes a `LineTo`.
     pub fn to_path_els(&self, start: Point) -> Vec<PathEl> {
         match *self {

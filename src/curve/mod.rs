@@ -31,9 +31,9 @@ mod solve;
 mod test_util;
 mod trace;
 
-pub use command::{PathCommand, ARC_FLATTEN_TOLERANCE};
+pub use command::PathCommand;
 pub use conic::{Conic, EllipseParams, HyperbolaParams, ParabolaParams};
 pub use kind::CurveKind;
-pub use path::{level_curve_path, GUIDE_MAX_DISTANCE};
+pub use path::level_curve_path;
 pub use polynomial::{Polynomial, MAX_DEGREE};
 pub use solve::{intersect_near, project};

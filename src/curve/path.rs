@@ -20,7 +20,7 @@ pub(super) const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
 /// forms: lines, circular and elliptical arcs, parabola arcs).
 ///
 /// `from` and `to` lie on the curve (within ~1e-6); `guide` are points near the curve (within
-/// [`GUIDE_MAX_DISTANCE`]), in path order, telling which part of the curve is meant: which way
+/// 2 px), in path order, telling which part of the curve is meant: which way
 /// round a closed curve, which branch of a hyperbola. When `from == to` on a closed curve the
 /// whole curve is meant (for ellipses two arcs are emitted, of a third and two thirds of a turn; for traced curves the guide must
 /// go round).
@@ -40,7 +40,7 @@ pub(super) const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
 ///
 /// Returns `None` for non-finite input, a non-positive `tolerance`, a constant polynomial,
 /// `from`/`to` not on the curve (within 0.01), a guide point whose projection fails or (for
-/// parabolas) lies farther than [`GUIDE_MAX_DISTANCE`] from the arc, points on different
+/// parabolas) lies farther than 2 px from the arc, points on different
 /// hyperbola branches, a trace that does not reach `to`, or a trace step that no cubic
 /// follows within `tolerance` (it jumps the gap between two branches by a saddle).
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(d <= max)` also rejects NaN distances.

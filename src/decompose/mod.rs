@@ -98,7 +98,7 @@ pub enum Cover {
     #[default]
     Greedy,
     /// The fewest pieces the greedy's growth could give, cut anywhere round a closed
-    /// contour ([`optimal_points`]); never more pieces than [`Cover::Greedy`].
+    /// contour (a shortest path round the cycle); never more pieces than [`Cover::Greedy`].
     Optimal,
 }
 
@@ -277,8 +277,8 @@ pub fn decompose_within(
 }
 
 /// [`decompose_within`] with the given cover. With [`Cover::Optimal`] a closed contour may
-/// come back rotated (the same cycle of points from another start; see
-/// [`optimal_points`]).
+/// come back rotated (the same cycle of points, started where the shortest path round the
+/// cycle cuts it).
 pub fn decompose_cover(
     contours: Vec<Contour>,
     model: Model,

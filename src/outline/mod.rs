@@ -42,7 +42,6 @@ mod vertices;
 
 pub(crate) use band_path::{band_contour_path, has_staircase};
 pub(crate) use cut::{cut, Loop};
-pub use joins::JUNCTION_MAX_DISTANCE;
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
 pub use render_check::EdgeClipping;
 

@@ -127,7 +127,7 @@ pub struct ContourPath {
 
 impl ContourPath {
     /// The path as a kurbo [`BezPath`] (arcs approximated by cubics within
-    /// [`crate::ARC_FLATTEN_TOLERANCE`]), closed; empty for an empty contour.
+    /// 0.001 px), closed; empty for an empty contour.
     pub fn to_bez_path(&self) -> BezPath {
         let mut path = BezPath::new();
         if self.commands.is_empty() {

@@ -125,15 +125,15 @@ impl Witness {
     }
 }
 
-/// The answer of [`Recognizer::recognize`].
+/// The answer of [`Recognizer::recognize`](crate::Recognizer::recognize).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Outcome {
-    /// A verified [`Certificate`] exists ([`Recognizer::certificate`]).
+    /// A verified [`Certificate`] exists ([`Recognizer::certificate`](crate::Recognizer::certificate)).
     Described,
-    /// A verified [`Witness`] exists ([`Recognizer::witness`]).
+    /// A verified [`Witness`] exists ([`Recognizer::witness`](crate::Recognizer::witness)).
     NotDescribed,
     /// Neither could be established (exact guard cap, or liftings overflowing `i64`).
     Undecided,
-    /// Not decided within the work limit ([`Recognizer::set_work_limit`]).
+    /// Not decided within the work limit ([`Recognizer::set_work_limit`](crate::Recognizer::set_work_limit)).
     OverBudget,
 }

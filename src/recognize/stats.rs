@@ -3,7 +3,7 @@
 /// Counters of the work done, for benchmarks and reports.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Stats {
-    /// Calls to [`Recognizer::recognize`].
+    /// Calls to [`Recognizer::recognize`](crate::Recognizer::recognize).
     pub queries: u64,
     /// Queries answered by the previous certificate alone.
     pub certificate_reused: u64,
@@ -16,11 +16,11 @@ pub struct Stats {
     pub whitened: u64,
     /// Queries that needed the exact fallback.
     pub exact_fallbacks: u64,
-    /// Queries answered [`Outcome::Undecided`].
+    /// Queries answered [`Outcome::Undecided`](crate::Outcome::Undecided).
     pub undecided: u64,
-    /// Queries answered [`Outcome::OverBudget`].
+    /// Queries answered [`Outcome::OverBudget`](crate::Outcome::OverBudget).
     pub over_budget: u64,
-    /// Work units spent (see [`Recognizer::set_work_limit`]).
+    /// Work units spent (see [`Recognizer::set_work_limit`](crate::Recognizer::set_work_limit)).
     pub work: u64,
 }
 

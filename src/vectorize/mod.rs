@@ -9,7 +9,7 @@ mod partition_run;
 
 pub(crate) use borders::crack_sides;
 pub use borders::{Border, BorderGraph};
-pub use colour::{stack_order, ColourLayer, ColourVectorized};
+pub use colour::{ColourLayer, ColourVectorized};
 pub use options::{Layout, Options, Progress, ProgressFn, Stage};
 pub use partition::{BorderSource, Partition, PartitionBorder};
 

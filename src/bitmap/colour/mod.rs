@@ -198,10 +198,10 @@ pub struct Regions {
 /// Pixels with alpha below [`OPAQUE_ALPHA`] belong to no region; the others keep their
 /// RGB, whatever their alpha. With at most `max_colours` distinct colours among them these
 /// are the palette, exactly (ordered by decreasing pixel count, then by value). Otherwise
-/// the colours are quantized ([`quantize::palette`]: NeuQuant's palette refined by a few
+/// the colours are quantized (NeuQuant's palette refined by a few
 /// k-means steps), each pixel takes the nearest palette colour, and the thin fringes of
 /// in-between colour along edges between two regions join the nearer of the two
-/// ([`fringe::clean`]); colours left without pixels are dropped.
+/// (`fringe::clean`); colours left without pixels are dropped.
 pub fn colour_regions(rgba: &RgbaImage, max_colours: u16) -> Regions {
     let max_colours = max_colours.clamp(1, MAX_COLOURS);
     let (width, height) = rgba.dimensions();
