@@ -324,7 +324,7 @@ pub(crate) fn decompose_reporting(
                     let pieces = chunk.iter().map(|c| one(c, rec)).collect();
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
                     done(n);
-                    (pieces, rec.stats().since(&before))
+                    (pieces, &rec.stats() - &before)
                 }
                 None => {
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
@@ -338,7 +338,7 @@ pub(crate) fn decompose_reporting(
     let mut stats = Stats::default();
     let mut pieces = Vec::with_capacity(contours.len());
     for (p, s) in results {
-        stats.add(&s);
+        stats += &s;
         for (rotation, p) in p {
             if rotation > 0 {
                 contours[pieces.len()].points.rotate_left(rotation);

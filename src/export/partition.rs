@@ -39,7 +39,7 @@ pub(crate) fn path_data(paths: &[ContourPath], grid: u8) -> (String, CommandCoun
     for p in paths {
         let mut p = p.clone();
         drop_closing_line(&mut p);
-        counts.add(&p.counts());
+        counts += &p.counts();
         write_path_data(&p, usize::from(grid), 0.0, &mut s);
     }
     (s, counts)

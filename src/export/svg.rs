@@ -366,10 +366,10 @@ pub(crate) fn empty_output(svg: String) -> SvgOutput {
 impl SvgOutput {
     /// Counts the commands, fallbacks and joins of `paths` in this output.
     pub(crate) fn add(&mut self, paths: &PathData) {
-        self.commands.add(&paths.commands);
-        self.fallback_reasons.add(&paths.fallbacks);
+        self.commands += &paths.commands;
+        self.fallback_reasons += &paths.fallbacks;
         self.fallbacks = self.fallback_reasons.total();
-        self.joins.add(&paths.joins);
+        self.joins += &paths.joins;
         self.max_fit_error = self.max_fit_error.max(paths.max_fit_error);
     }
 }
@@ -432,9 +432,9 @@ pub(crate) fn path_data(
             .collect();
         done(g * CONTOURS_PER_GROUP + group.len());
         for (data, counts, cp) in parts {
-            commands.add(&counts);
-            fallbacks.add(&cp.fallbacks);
-            joins.add(&cp.joins);
+            commands += &counts;
+            fallbacks += &cp.fallbacks;
+            joins += &cp.joins;
             max_fit_error = max_fit_error.max(cp.max_fit_error);
             svg.push_str(&data);
         }

@@ -25,8 +25,10 @@ impl CommandCounts {
     pub fn total(&self) -> usize {
         self.move_to + self.line + self.arc + self.quad + self.cubic + self.close
     }
+}
 
-    pub(crate) fn add(&mut self, o: &CommandCounts) {
+impl std::ops::AddAssign<&CommandCounts> for CommandCounts {
+    fn add_assign(&mut self, o: &CommandCounts) {
         self.move_to += o.move_to;
         self.line += o.line;
         self.arc += o.arc;
@@ -75,8 +77,10 @@ impl FallbackCounts {
             + self.split
             + self.invalid_pieces
     }
+}
 
-    pub(crate) fn add(&mut self, o: &FallbackCounts) {
+impl std::ops::AddAssign<&FallbackCounts> for FallbackCounts {
+    fn add_assign(&mut self, o: &FallbackCounts) {
         self.zero_certificate += o.zero_certificate;
         self.no_polynomial += o.no_polynomial;
         self.thin += o.thin;
@@ -101,8 +105,8 @@ pub struct JoinCounts {
     pub cracked: usize,
 }
 
-impl JoinCounts {
-    pub(crate) fn add(&mut self, o: &JoinCounts) {
+impl std::ops::AddAssign<&JoinCounts> for JoinCounts {
+    fn add_assign(&mut self, o: &JoinCounts) {
         self.intersection += o.intersection;
         self.bridged += o.bridged;
         self.shared += o.shared;

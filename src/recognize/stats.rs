@@ -24,9 +24,9 @@ pub struct Stats {
     pub work: u64,
 }
 
-impl Stats {
+impl std::ops::AddAssign<&Stats> for Stats {
     /// Adds another set of counters.
-    pub fn add(&mut self, o: &Stats) {
+    fn add_assign(&mut self, o: &Stats) {
         self.queries += o.queries;
         self.certificate_reused += o.certificate_reused;
         self.float_runs += o.float_runs;
@@ -37,9 +37,14 @@ impl Stats {
         self.over_budget += o.over_budget;
         self.work += o.work;
     }
+}
 
-    /// The counters of the work done since `earlier` (counters of the same recognizer).
-    pub fn since(&self, earlier: &Stats) -> Stats {
+impl std::ops::Sub<&Stats> for &Stats {
+    type Output = Stats;
+
+    /// The counters of the work done since `earlier` (counters of the same recognizer, taken
+    /// earlier: every field is at least `earlier`'s).
+    fn sub(self, earlier: &Stats) -> Stats {
         Stats {
             queries: self.queries - earlier.queries,
             certificate_reused: self.certificate_reused - earlier.certificate_reused,

@@ -549,7 +549,7 @@ fn differential_report() {
             up.iter().for_each(|p| r.add_outlier(p, Side::Upper));
             lo.iter().for_each(|p| r.add_outlier(p, Side::Lower));
             r.recognize();
-            stats.add(&r.stats());
+            stats += &r.stats();
             check_instance(model, s, up, lo, &mut tally).unwrap();
         }
         println!(
@@ -708,7 +708,7 @@ fn long_flat_arc_is_decided_like_the_exact_fallback() {
             }
             x += 1;
         }
-        total.add(&rec.stats());
+        total += &rec.stats();
     }
     assert!(checked > 50, "{total:?}");
     assert!(

@@ -201,7 +201,7 @@ pub(super) fn run(
             .contours
             .extend(l.decomposition.contours.iter().cloned());
         merged.pieces.extend(l.decomposition.pieces.iter().cloned());
-        merged.stats.add(&l.decomposition.stats);
+        merged.stats += &l.decomposition.stats;
     }
     let mask = image.mask_where(|_| true);
     Ok(ColourRun {

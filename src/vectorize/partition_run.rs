@@ -60,7 +60,7 @@ pub(super) fn run(
         let data: Vec<(String, String)> = (0..layers.len())
             .map(|k| {
                 let (d, c) = path_data(&part.region_paths(k), o.grid.min(crate::outline::MAX_GRID));
-                commands.add(&c);
+                commands += &c;
                 (fills[k].clone(), d)
             })
             .collect();
@@ -104,7 +104,7 @@ pub(super) fn run(
             .contours
             .extend(l.decomposition.contours.iter().cloned());
         merged.pieces.extend(l.decomposition.pieces.iter().cloned());
-        merged.stats.add(&l.decomposition.stats);
+        merged.stats += &l.decomposition.stats;
     }
     let mask = image.mask_where(|_| true);
     Ok(ColourRun {
