@@ -176,18 +176,7 @@ pub fn colour_json(
     height: u32,
     layout: &str,
 ) -> String {
-    let basis = model.basis();
-    let basis_ref: &dyn crate::model::Basis = &basis;
-    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": {},\n \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"regions\": [",
-        quote(layout),
-        quote(&model.name()),
-        quote(cover.name()),
-        names.join(",")
-    );
+    let mut s = colour_header(model, cover, width, height, layout);
     for (k, r) in regions.iter().enumerate() {
         if k > 0 {
             s.push(',');
@@ -202,6 +191,29 @@ pub fn colour_json(
         s.push_str("\n ]}");
     }
     s.push_str("\n ]}\n");
+    s
+}
+
+/// The opening of a `layertrace-colour/1` document, up to the `"regions"` list's `[`.
+pub(crate) fn colour_header(
+    model: crate::model::Model,
+    cover: crate::decompose::Cover,
+    width: u32,
+    height: u32,
+    layout: &str,
+) -> String {
+    let basis = model.basis();
+    let basis_ref: &dyn crate::model::Basis = &basis;
+    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": {},\n \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"regions\": [",
+        quote(layout),
+        quote(&model.name()),
+        quote(cover.name()),
+        names.join(",")
+    );
     s
 }
 

@@ -96,17 +96,7 @@ pub(crate) fn partition_json(
     width: u32,
     height: u32,
 ) -> String {
-    let basis = model.basis();
-    let basis_ref: &dyn crate::model::Basis = &basis;
-    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": \"partition\",\n \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"regions\": [",
-        quote(&model.name()),
-        quote(cover.name()),
-        names.join(",")
-    );
+    let mut s = super::json::colour_header(model, cover, width, height, "partition");
     for (k, r) in regions.iter().enumerate() {
         if k > 0 {
             s.push(',');

@@ -360,17 +360,7 @@ fn program(
 mod tests {
     use super::*;
     use crate::model::Model;
-
-    /// A small deterministic generator: integers in `-range..=range`.
-    fn rng(seed: u64) -> impl FnMut(i64) -> i64 {
-        let mut s = seed;
-        move |range| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % (2 * range as u64 + 1)) as i64 - range
-        }
-    }
+    use crate::points::tests::rng;
 
     fn rational(n: i64, d: i64) -> BigRational {
         BigRational::new(n.into(), d.into())

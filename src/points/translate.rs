@@ -214,17 +214,7 @@ pub(crate) fn evaluate(basis: &dyn Basis, coefficients: &[BigInt], p: &[i64]) ->
 mod tests {
     use super::*;
     use crate::model::Model;
-
-    /// A small deterministic generator.
-    fn rng(seed: u64) -> impl FnMut(i64) -> i64 {
-        let mut s = seed;
-        move |range| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 33) % (2 * range as u64 + 1)) as i64 - range
-        }
-    }
+    use crate::points::tests::rng;
 
     /// For every built-in model: the absolute layer's value differs from the certificate's by
     /// the same constant at every point, exactly (so the shifted bounds hold where the

@@ -132,22 +132,14 @@ pub(super) fn run(
                 .and_then(|nu| Band::new(&padded, nu))
                 .map(|b| b.within(m, m, m + iw, m + ih)),
         );
-        let contours = trace(&padded, Convention::Default);
-        super::check_memory(name, options, &contours, &mask)?;
-        let decomposition = decompose_reporting(
-            contours,
-            options.model,
-            OutlierRule::NotInPiece,
-            options.budget,
-            options.cover,
-            &|_| {},
-        );
-        layers.push(ColourLayer {
-            colour: image.palette()[k],
-            pixels: counts[k],
+        layers.push(ColourLayer::traced(
+            image.palette()[k],
+            counts[k],
             mask,
-            decomposition,
-        });
+            &padded,
+            name,
+            options,
+        )?);
     }
     let (w, h) = (image.width(), image.height());
     let fills: Vec<String> = layers.iter().map(|l| l.colour.to_string()).collect();
@@ -188,21 +180,7 @@ pub(super) fn run(
         (Some(svg), true) => Some(colour_fidelity(&svg.svg, image, options.smooth)?),
         _ => None,
     };
-    let mut merged = Decomposition {
-        model: options.model,
-        contours: Vec::new(),
-        pieces: Vec::new(),
-        rule: OutlierRule::NotInPiece,
-        cover: options.cover,
-        stats: Default::default(),
-    };
-    for l in &layers {
-        merged
-            .contours
-            .extend(l.decomposition.contours.iter().cloned());
-        merged.pieces.extend(l.decomposition.pieces.iter().cloned());
-        merged.stats += &l.decomposition.stats;
-    }
+    let merged = merged_decomposition(&layers, options);
     let mask = image.mask_where(|_| true);
     Ok(ColourRun {
         colour: ColourVectorized {
@@ -216,6 +194,56 @@ pub(super) fn run(
         merged,
         mask,
     })
+}
+
+impl ColourLayer {
+    /// The layer of `mask`, whose padded copy `padded` (see the module documentation) is
+    /// traced and decomposed, after the memory check.
+    pub(super) fn traced(
+        colour: Colour,
+        pixels: u64,
+        mask: Mask,
+        padded: &Mask,
+        name: &Path,
+        options: &Options,
+    ) -> Result<ColourLayer, Error> {
+        let contours = trace(padded, Convention::Default);
+        super::check_memory(name, options, &contours, &mask)?;
+        let decomposition = decompose_reporting(
+            contours,
+            options.model,
+            OutlierRule::NotInPiece,
+            options.budget,
+            options.cover,
+            &|_| {},
+        );
+        Ok(ColourLayer {
+            colour,
+            pixels,
+            mask,
+            decomposition,
+        })
+    }
+}
+
+/// Every layer's contours and pieces in drawing order, as one decomposition.
+pub(super) fn merged_decomposition(layers: &[ColourLayer], options: &Options) -> Decomposition {
+    let mut merged = Decomposition {
+        model: options.model,
+        contours: Vec::new(),
+        pieces: Vec::new(),
+        rule: OutlierRule::NotInPiece,
+        cover: options.cover,
+        stats: Default::default(),
+    };
+    for l in layers {
+        merged
+            .contours
+            .extend(l.decomposition.contours.iter().cloned());
+        merged.pieces.extend(l.decomposition.pieces.iter().cloned());
+        merged.stats += &l.decomposition.stats;
+    }
+    merged
 }
 
 /// The margin of the padded masks.

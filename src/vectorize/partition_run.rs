@@ -13,8 +13,6 @@ pub(super) fn run(
     options: &super::Options,
 ) -> Result<super::colour::ColourRun, Error> {
     use super::colour::{pad, ColourLayer, ColourRun, ColourVectorized, MARGIN};
-    use crate::contour::{trace, Convention};
-    use crate::decompose::{decompose_reporting, OutlierRule};
     use crate::export::partition::{
         partition_document, partition_json, path_data, PartitionRegion,
     };
@@ -29,22 +27,10 @@ pub(super) fn run(
     let mut layers = Vec::with_capacity(image.palette().len());
     for (k, &colour) in image.palette().iter().enumerate() {
         let mask = image.mask_where(|c| c == k);
-        let contours = trace(&pad(&mask), Convention::Default);
-        super::check_memory(name, options, &contours, &mask)?;
-        let decomposition = decompose_reporting(
-            contours,
-            options.model,
-            OutlierRule::NotInPiece,
-            options.budget,
-            options.cover,
-            &|_| {},
-        );
-        layers.push(ColourLayer {
-            colour,
-            pixels: counts[k],
-            mask,
-            decomposition,
-        });
+        let padded = pad(&mask);
+        layers.push(ColourLayer::traced(
+            colour, counts[k], mask, &padded, name, options,
+        )?);
     }
     let outline = options
         .svg
@@ -91,21 +77,7 @@ pub(super) fn run(
         (Some(svg), true) => Some(crate::fidelity::colour_fidelity(&svg.svg, image, None)?),
         _ => None,
     };
-    let mut merged = Decomposition {
-        model: options.model,
-        contours: Vec::new(),
-        pieces: Vec::new(),
-        rule: OutlierRule::NotInPiece,
-        cover: options.cover,
-        stats: Default::default(),
-    };
-    for l in &layers {
-        merged
-            .contours
-            .extend(l.decomposition.contours.iter().cloned());
-        merged.pieces.extend(l.decomposition.pieces.iter().cloned());
-        merged.stats += &l.decomposition.stats;
-    }
+    let merged = super::colour::merged_decomposition(&layers, options);
     let mask = image.mask_where(|_| true);
     Ok(ColourRun {
         colour: ColourVectorized {
