@@ -134,7 +134,7 @@ pub(crate) fn partition_json(
             .enumerate()
         {
             for (pi, p) in pieces.iter().enumerate() {
-                for q in &c.points[p.first..=p.last.min(c.points.len() - 1)] {
+                for q in &c.points[p.first..=p.last] {
                     let key = (i64::from(q.x) - margin, i64::from(q.y) - margin);
                     let v = m.entry(key).or_default();
                     if v.last() != Some(&(ci, pi)) {

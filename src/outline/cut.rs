@@ -119,7 +119,7 @@ impl Loop {
 /// The stretch of one of `loops` from corner `from` to corner `to` (the same corner for a
 /// closed border: once round the loop), beginning and ending exactly at them (see the
 /// module documentation), or `None` when no stretch is within 30% (plus one pixel) of
-/// `length` long, or when one leaves `bounds`.
+/// `length` long, or when one leaves `bounds` widened by 1.5 px.
 pub(crate) fn cut(
     loops: &[Loop],
     from: Point,
@@ -166,9 +166,16 @@ pub(crate) fn cut(
     if score > 0.3 * length + 1.0 {
         return None;
     }
-    let mut segs = loops[k].stretch(a, b);
-    let first = segs.first().map_or(to, |s| s.start());
-    let last = segs.last().map_or(from, |s| s.end());
+    let l = &loops[k];
+    // An open border whose two corners are nearest the same point of the loop is a
+    // straight line between them, not the whole loop from that point round to itself.
+    let empty =
+        !closed && (l.position(b.0, b.1) - l.position(a.0, a.1)).rem_euclid(l.total()) < 1e-9;
+    let mut segs = if empty { Vec::new() } else { l.stretch(a, b) };
+    if segs.is_empty() {
+        segs.push(PathSeg::Line(kurbo::Line::new(from, to)));
+    }
+    let (first, last) = (segs[0].start(), segs[segs.len() - 1].end());
     if first != from {
         segs.insert(0, PathSeg::Line(kurbo::Line::new(from, first)));
     }
@@ -231,6 +238,25 @@ mod tests {
             bounds
         )
         .is_none());
+    }
+
+    #[test]
+    fn corners_nearest_one_point_give_a_line_not_the_loop() {
+        let l = square();
+        // Both corners of a short open border are nearest the vertex (0.5, 1.0).
+        let (from, to) = (Point::new(0.25, 1.0), Point::new(0.4, 1.0));
+        let segs = cut(
+            std::slice::from_ref(&l),
+            from,
+            to,
+            1.0,
+            Rect::new(0.0, 0.0, 4.0, 4.0),
+        )
+        .unwrap();
+        assert_eq!(segs.first().unwrap().start(), from);
+        assert_eq!(segs.last().unwrap().end(), to);
+        let len: f64 = segs.iter().map(|s| s.arclen(1e-6)).sum();
+        assert!(len < 1.0, "{len}: went round the loop");
     }
 
     #[test]

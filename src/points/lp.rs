@@ -7,7 +7,7 @@
 //! by `(d_r M_i − d_i M_r) / D`, an exact division (the rows are those of `±adj B'`): no
 //! rational number is ever reduced, and every quantity is exact. The entering column is the
 //! one of largest reduced cost (Dantzig), the leaving row the least ratio (ties to the
-//! lowest column); after `2m` degenerate pivots in a row, Bland's rule (the lowest-index
+//! lowest column); once more than `2m` pivots in a row are degenerate, Bland's rule (the lowest-index
 //! entering column) takes over for the rest of the call, so the method cannot cycle on the
 //! degenerate vertices the thinnest-layer programs start from. Dantzig's rule halves the
 //! pivots of the cubic example of `examples/paper_3d.rs` against Bland's alone.
@@ -136,8 +136,9 @@ impl Simplex {
         v
     }
 
-    /// Runs Bland's rule until the basis is optimal over the columns given, the objective is
-    /// at least `bound` (when one is given), or the program is unbounded.
+    /// Pivots (Dantzig's rule, Bland's after a streak of degenerate pivots: see the module
+    /// documentation) until the basis is optimal over the columns given, the objective is at
+    /// least `bound` (when one is given), or the program is unbounded.
     pub fn solve(&mut self, bound: Option<&BigRational>) -> Status {
         let m = self.basis.len();
         let mut in_basis = vec![false; self.columns.len()];

@@ -251,34 +251,40 @@ pub(crate) fn partition(
             }
         }
     }
+    // The pixels region `k` gets wrong when its path alone is rendered, for every region
+    // marked in `dirty` (none for the others).
+    let wrong_pixels =
+        |drawn: &[PartitionBorder], dirty: &[bool]| -> Result<Vec<Vec<(i64, i64)>>, Error> {
+            (0..n)
+                .into_par_iter()
+                .map(|k| {
+                    if !dirty[k] {
+                        return Ok(Vec::new());
+                    }
+                    let paths: Vec<ContourPath> = region_loops[k]
+                        .iter()
+                        .map(|l| loop_path(drawn, l))
+                        .collect();
+                    let d = crate::export::partition::path_data(&paths, grid);
+                    let svg = crate::export::partition::single_path_document(&d, w, h);
+                    let rendered = crate::fidelity::rasterize_svg(&svg, w, h)?;
+                    let mut wrong = Vec::new();
+                    for y in 0..i64::from(h) {
+                        for x in 0..i64::from(w) {
+                            if rendered.get(x, y) != (image.get(x, y) == Some(k)) {
+                                wrong.push((x, y));
+                            }
+                        }
+                    }
+                    Ok(wrong)
+                })
+                .collect()
+        };
     let mut dirty = vec![true; n];
     let mut rounds = 0;
     loop {
         rounds += 1;
-        let wrong: Vec<Vec<(i64, i64)>> = (0..n)
-            .into_par_iter()
-            .map(|k| {
-                if !dirty[k] {
-                    return Ok(Vec::new());
-                }
-                let paths: Vec<ContourPath> = region_loops[k]
-                    .iter()
-                    .map(|l| loop_path(&drawn, l))
-                    .collect();
-                let d = crate::export::partition::path_data(&paths, grid);
-                let svg = crate::export::partition::single_path_document(&d, w, h);
-                let rendered = crate::fidelity::rasterize_svg(&svg, w, h)?;
-                let mut wrong = Vec::new();
-                for y in 0..i64::from(h) {
-                    for x in 0..i64::from(w) {
-                        if rendered.get(x, y) != (image.get(x, y) == Some(k)) {
-                            wrong.push((x, y));
-                        }
-                    }
-                }
-                Ok(wrong)
-            })
-            .collect::<Result<_, Error>>()?;
+        let wrong = wrong_pixels(&drawn, &dirty)?;
         dirty = vec![false; n];
         if wrong.iter().all(Vec::is_empty) {
             break;
@@ -348,7 +354,17 @@ pub(crate) fn partition(
             }
         }
         if rounds > MAX_ROUNDS + 2 {
-            // Every moved region is along its cracks by now: exact.
+            // Out of rounds: the regions changed last are checked once more, and if one is
+            // still wrong every border goes along its cracks, which is exact by
+            // construction (each region is then its pixels' own polygon).
+            if wrong_pixels(&drawn, &dirty)?.iter().any(|p| !p.is_empty()) {
+                for (b, border) in graph.borders.iter().enumerate() {
+                    if drawn[b].source != BorderSource::Cracks {
+                        let s = &sources[b];
+                        drawn[b] = first_drawing(border, &s[s.len() - 1..], &draw);
+                    }
+                }
+            }
             break;
         }
     }
