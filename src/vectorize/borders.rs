@@ -67,11 +67,9 @@ impl BorderGraph {
             }
         };
         // The (left, right) pixels of the crack leaving corner (x, y) in direction d.
-        let sides = |x: i64, y: i64, d: usize| match d {
-            0 => ((x, y - 1), (x, y)),
-            1 => ((x, y), (x - 1, y)),
-            2 => ((x - 1, y), (x - 1, y - 1)),
-            _ => ((x - 1, y - 1), (x, y - 1)),
+        let sides = |x: i64, y: i64, d: usize| {
+            let [l, r] = crack_sides((x, y), (x + STEPS[d].0, y + STEPS[d].1));
+            (l, r)
         };
         // Whether a border crack leaves (x, y) in direction d (walked that way).
         let leaves = |x: i64, y: i64, d: usize| {

@@ -41,11 +41,12 @@ pub(super) fn run(
     let part = super::partition::partition(image, &decompositions, MARGIN, &outline)?;
     let (w, h) = (image.width(), image.height());
     let fills: Vec<String> = layers.iter().map(|l| l.colour.to_string()).collect();
-    let svg = options.svg.as_ref().map(|o| {
+    let svg = options.svg.as_ref().map(|_| {
         let mut commands = crate::outline::CommandCounts::default();
         let data: Vec<(String, String)> = (0..layers.len())
             .map(|k| {
-                let (d, c) = path_data(&part.region_paths(k), o.grid.min(crate::outline::MAX_GRID));
+                // The grid the render check drew with (`o.grid` clamped by outline_options).
+                let (d, c) = path_data(&part.region_paths(k), outline.grid);
                 commands += &c;
                 (fills[k].clone(), d)
             })
