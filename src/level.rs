@@ -25,9 +25,11 @@ use kurbo::Point;
 /// outliers, `(upper + above) / 2`. Without RIGHT outliers, half the layer's width (at least
 /// one half) above `upper`.
 pub fn boundary_level(c: &Certificate) -> f64 {
-    match c.above {
-        Some(above) => (c.upper as f64 + above as f64) / 2.0,
-        None => c.upper as f64 + ((c.upper - c.lower) as f64).max(1.0) / 2.0,
+    match c.extremes.above {
+        Some(above) => (c.extremes.upper as f64 + above as f64) / 2.0,
+        None => {
+            c.extremes.upper as f64 + ((c.extremes.upper - c.extremes.lower) as f64).max(1.0) / 2.0
+        }
     }
 }
 
@@ -136,6 +138,7 @@ pub fn piece_kind(basis: &dyn Basis, c: &Certificate) -> CurveKind {
 mod tests {
     use super::*;
     use crate::model::Model;
+    use crate::recognize::Extremes;
 
     fn cert(
         origin: [i64; 2],
@@ -147,10 +150,12 @@ mod tests {
         Certificate {
             origin: origin.to_vec(),
             coefficients,
-            lower,
-            upper,
-            above: Some(above),
-            below: Some(lower - 1),
+            extremes: Extremes {
+                lower,
+                upper,
+                above: Some(above),
+                below: Some(lower - 1),
+            },
         }
     }
 
@@ -197,10 +202,12 @@ mod tests {
         let zero = Certificate {
             origin: vec![0, 0],
             coefficients: vec![0, 0],
-            lower: 0,
-            upper: 0,
-            above: None,
-            below: None,
+            extremes: Extremes {
+                lower: 0,
+                upper: 0,
+                above: None,
+                below: None,
+            },
         };
         assert_eq!(
             piece_kind(&Model::Line.basis(), &zero),

@@ -137,5 +137,6 @@ pub use points::{
     ThinnestWork,
 };
 pub use recognize::{
-    max_margin_direction, recognize, Certificate, Outcome, Recognizer, Side, Stats, Witness,
+    max_margin_direction, recognize, Certificate, Extremes, Outcome, Recognizer, Side, Stats,
+    Witness,
 };

@@ -37,11 +37,17 @@ fn check_certificates(d: &Decomposition) {
             let cert = &p.certificate;
             let v = |q: Pixel| value(&basis, &cert.origin, &cert.coefficients, q);
             let inl: Vec<i128> = c.points[p.first..=p.last].iter().map(|&q| v(q)).collect();
-            assert_eq!(inl.iter().min(), Some(&cert.lower), "{p:?}");
-            assert_eq!(inl.iter().max(), Some(&cert.upper), "{p:?}");
+            assert_eq!(inl.iter().min(), Some(&cert.extremes.lower), "{p:?}");
+            assert_eq!(inl.iter().max(), Some(&cert.extremes.upper), "{p:?}");
             let (right, left) = piece_outliers(&c.points, p.first, p.last, d.rule);
-            assert!(right.iter().all(|&q| v(q) > cert.upper), "{p:?} right");
-            assert!(left.iter().all(|&q| v(q) < cert.lower), "{p:?} left");
+            assert!(
+                right.iter().all(|&q| v(q) > cert.extremes.upper),
+                "{p:?} right"
+            );
+            assert!(
+                left.iter().all(|&q| v(q) < cert.extremes.lower),
+                "{p:?} left"
+            );
             // A cut piece is never the last one of its contour.
             if p.cut.is_some() {
                 assert!(p.last + 1 < c.points.len());

@@ -61,12 +61,26 @@ fn optimal_never_more_pieces_than_greedy_on_every_sample() {
                     assert_eq!(cert.origin, vec![first.x as i64, first.y as i64]);
                     let v = |q: Pixel| value(&basis, &cert.origin, &cert.coefficients, q);
                     let inl: Vec<i128> = c.points[p.first..=p.last].iter().map(|&q| v(q)).collect();
-                    assert_eq!(inl.iter().min(), Some(&cert.lower), "{path} {model}");
-                    assert_eq!(inl.iter().max(), Some(&cert.upper), "{path} {model}");
+                    assert_eq!(
+                        inl.iter().min(),
+                        Some(&cert.extremes.lower),
+                        "{path} {model}"
+                    );
+                    assert_eq!(
+                        inl.iter().max(),
+                        Some(&cert.extremes.upper),
+                        "{path} {model}"
+                    );
                     let (right, left) =
                         piece_outliers(&c.points, p.first, p.last, OutlierRule::NotInPiece);
-                    assert!(right.iter().all(|&q| v(q) > cert.upper), "{path} {model}");
-                    assert!(left.iter().all(|&q| v(q) < cert.lower), "{path} {model}");
+                    assert!(
+                        right.iter().all(|&q| v(q) > cert.extremes.upper),
+                        "{path} {model}"
+                    );
+                    assert!(
+                        left.iter().all(|&q| v(q) < cert.extremes.lower),
+                        "{path} {model}"
+                    );
                 }
             }
             totals.push((path.clone(), model, greedy.piece_count(), d.piece_count()));

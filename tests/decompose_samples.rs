@@ -47,16 +47,24 @@ fn certificates_and_maximality_on_every_sample() {
                     assert_eq!(cert.origin, xy(&c.points[p.first]));
                     let v = |q: Pixel| value(&basis, &cert.origin, &cert.coefficients, q);
                     let inl: Vec<i128> = c.points[p.first..=p.last].iter().map(|&q| v(q)).collect();
-                    assert_eq!(inl.iter().min(), Some(&cert.lower), "{path} {model}");
-                    assert_eq!(inl.iter().max(), Some(&cert.upper), "{path} {model}");
+                    assert_eq!(
+                        inl.iter().min(),
+                        Some(&cert.extremes.lower),
+                        "{path} {model}"
+                    );
+                    assert_eq!(
+                        inl.iter().max(),
+                        Some(&cert.extremes.upper),
+                        "{path} {model}"
+                    );
                     let (right, left) =
                         piece_outliers(&c.points, p.first, p.last, OutlierRule::NotInPiece);
                     assert!(
-                        right.iter().all(|&q| v(q) > cert.upper),
+                        right.iter().all(|&q| v(q) > cert.extremes.upper),
                         "{path} {model} right"
                     );
                     assert!(
-                        left.iter().all(|&q| v(q) < cert.lower),
+                        left.iter().all(|&q| v(q) < cert.extremes.lower),
                         "{path} {model} left"
                     );
                     // Maximal: one more point is not described, with a verified witness.

@@ -126,13 +126,13 @@ fn check(p: &Pattern, w: u32, h: u32) -> Result<(), TestCaseError> {
                 let cert = &piece.certificate;
                 let v = |q: &Pixel| cert.value(&basis, &[q.x as i64, q.y as i64]).unwrap();
                 for q in &c.points[piece.first..=piece.last] {
-                    prop_assert!(cert.lower <= v(q) && v(q) <= cert.upper);
+                    prop_assert!(cert.extremes.lower <= v(q) && v(q) <= cert.extremes.upper);
                     covered.insert(*q);
                 }
                 let (r, l) =
                     piece_outliers(&c.points, piece.first, piece.last, OutlierRule::NotInPiece);
-                prop_assert!(r.iter().all(|q| v(q) > cert.upper));
-                prop_assert!(l.iter().all(|q| v(q) < cert.lower));
+                prop_assert!(r.iter().all(|q| v(q) > cert.extremes.upper));
+                prop_assert!(l.iter().all(|q| v(q) < cert.extremes.lower));
             }
         }
         let out = svg_document(&d, w, h, &SvgOptions::default());

@@ -107,17 +107,17 @@ fn check_cover(basis: &Arc<dyn Basis>, pts: &[Pixel], pieces: &[Piece], rule: Ou
         let v = |q: Pixel| c.value(basis.as_ref(), &xy(q)).unwrap();
         for q in &pts[p.first..=p.last] {
             assert!(
-                c.lower <= v(*q) && v(*q) <= c.upper,
+                c.extremes.lower <= v(*q) && v(*q) <= c.extremes.upper,
                 "inlier {q:?} of {p:?}"
             );
         }
         let (right, left) = piece_outliers(pts, p.first, p.last, rule);
         assert!(
-            right.iter().all(|&q| v(q) > c.upper),
+            right.iter().all(|&q| v(q) > c.extremes.upper),
             "right outliers of {p:?}"
         );
         assert!(
-            left.iter().all(|&q| v(q) < c.lower),
+            left.iter().all(|&q| v(q) < c.extremes.lower),
             "left outliers of {p:?}"
         );
     }

@@ -425,13 +425,16 @@ mod tests {
             let v = |q: Pixel| c.value(basis, &xy(q)).unwrap();
             for q in &pts[p.first..=p.last] {
                 let f = v(*q);
-                assert!(c.lower <= f && f <= c.upper, "inlier {q:?} of piece {k}");
+                assert!(
+                    c.extremes.lower <= f && f <= c.extremes.upper,
+                    "inlier {q:?} of piece {k}"
+                );
             }
             for q in &right {
-                assert!(v(*q) > c.upper, "right outlier {q:?} of piece {k}");
+                assert!(v(*q) > c.extremes.upper, "right outlier {q:?} of piece {k}");
             }
             for q in &left {
-                assert!(v(*q) < c.lower, "left outlier {q:?} of piece {k}");
+                assert!(v(*q) < c.extremes.lower, "left outlier {q:?} of piece {k}");
             }
             // Maximality: the piece plus the next point is not described.
             if p.last + 1 < pts.len() {

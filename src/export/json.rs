@@ -125,8 +125,8 @@ pub(crate) fn write_contours(d: &Decomposition, margin: i64, s: &mut String) {
                 cert.origin.first().copied().unwrap_or(0) - margin,
                 cert.origin.get(1).copied().unwrap_or(0) - margin,
                 coefficients.join(","),
-                cert.lower,
-                cert.upper,
+                cert.extremes.lower,
+                cert.extremes.upper,
                 piece_kind(basis_ref, cert).name()
             );
             if let Some(cut) = p.cut {

@@ -397,10 +397,10 @@ pub fn recognition_json(r: &PointsRecognition) -> String {
                 " \"local\": {{\"origin\": {}, \"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": {}, \"below\": {}}},",
                 list(&local.origin),
                 list(local.coefficients.iter().chain(std::iter::once(&0))),
-                local.lower,
-                local.upper,
-                or_null(local.above),
-                or_null(local.below)
+                local.extremes.lower,
+                local.extremes.upper,
+                or_null(local.extremes.above),
+                or_null(local.extremes.below)
             );
         }
         PointsAnswer::Thinnest(t) => {

@@ -340,8 +340,11 @@ fn check_described(
     check_values(
         sets,
         local_value,
-        (bounds(local.lower), bounds(local.upper)),
-        (local.above.map(bounds), local.below.map(bounds)),
+        (bounds(local.extremes.lower), bounds(local.extremes.upper)),
+        (
+            local.extremes.above.map(bounds),
+            local.extremes.below.map(bounds),
+        ),
     )
     .map_err(|m| format!("local: {m}"))?;
     if let Some(l) = layer {

@@ -87,7 +87,7 @@ fn a_digital_conic_is_described_far_from_the_origin_too() {
         );
         assert!(sets.inliers.iter().all(|p| {
             let v = local.value(&basis, p).unwrap();
-            local.lower <= v && v <= local.upper
+            local.extremes.lower <= v && v <= local.extremes.upper
         }));
         assert_eq!(r.basis.len(), 6);
     }

@@ -166,10 +166,10 @@ pub(crate) fn absolute(basis: &dyn Basis, cert: &Certificate) -> Option<Layer> {
     let shift = |v: i128| BigInt::from(v) - &c;
     Some(Layer {
         coefficients: x,
-        lower: shift(cert.lower),
-        upper: shift(cert.upper),
-        above: cert.above.map(shift),
-        below: cert.below.map(shift),
+        lower: shift(cert.extremes.lower),
+        upper: shift(cert.extremes.upper),
+        above: cert.extremes.above.map(shift),
+        below: cert.extremes.below.map(shift),
     })
 }
 
@@ -215,6 +215,7 @@ mod tests {
     use super::*;
     use crate::model::Model;
     use crate::points::tests::rng;
+    use crate::recognize::Extremes;
 
     /// For every built-in model: the absolute layer's value differs from the certificate's by
     /// the same constant at every point, exactly (so the shifted bounds hold where the
@@ -237,14 +238,16 @@ mod tests {
                 let cert = Certificate {
                     origin: (0..d).map(|_| next(1000)).collect(),
                     coefficients: (0..basis.dim()).map(|_| next(50)).collect(),
-                    lower: i128::from(next(1000)),
-                    upper: 2000,
-                    above: Some(3000),
-                    below: None,
+                    extremes: Extremes {
+                        lower: i128::from(next(1000)),
+                        upper: 2000,
+                        above: Some(3000),
+                        below: None,
+                    },
                 };
                 let layer = absolute(&basis, &cert).expect("built-in spans are closed");
-                let shift = BigInt::from(cert.lower) - &layer.lower;
-                assert_eq!(BigInt::from(cert.upper) - &layer.upper, shift);
+                let shift = BigInt::from(cert.extremes.lower) - &layer.lower;
+                assert_eq!(BigInt::from(cert.extremes.upper) - &layer.upper, shift);
                 assert_eq!(BigInt::from(3000) - layer.above.clone().unwrap(), shift);
                 assert_eq!(layer.below, None);
                 for _ in 0..20 {
@@ -293,10 +296,12 @@ mod tests {
         let cert = Certificate {
             origin: vec![3, 0],
             coefficients: vec![1, 1],
-            lower: 0,
-            upper: 1,
-            above: None,
-            below: None,
+            extremes: Extremes {
+                lower: 0,
+                upper: 1,
+                above: None,
+                below: None,
+            },
         };
         assert!(absolute(&b, &cert).is_none());
         let at_zero = Certificate {

@@ -10,6 +10,7 @@
 use super::bareiss;
 use super::budget::{direct_solve_cost, rational_solve_cost, scan_cost, Meter, EXACT_SCAN_FACTOR};
 use super::gjk::{gjk, GjkOutcome, GjkParams};
+use super::proof::Extremes;
 use super::scalar::Scalar;
 use super::simplex::Simplex;
 use super::support::{integer_direction, ExactSupport, ListSupport, Sets, SupportMap, Tag};
@@ -26,26 +27,6 @@ pub(crate) fn dot_i128(a: &[i64], f: &[i64]) -> Option<i128> {
         s = s.checked_add((x as i128).checked_mul(y as i128)?)?;
     }
     Some(s)
-}
-
-/// The exact values of a certificate on the three sets.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Extremes {
-    /// `min_S a·F`.
-    pub lower: i128,
-    /// `max_S a·F`.
-    pub upper: i128,
-    /// `min_{S⁺} a·F`, if `S⁺` is not empty.
-    pub above: Option<i128>,
-    /// `max_{S⁻} a·F`, if `S⁻` is not empty.
-    pub below: Option<i128>,
-}
-
-impl Extremes {
-    /// True when the layer `[lower, upper]` strictly separates the outliers.
-    pub fn separates(&self) -> bool {
-        self.above.is_none_or(|v| v > self.upper) && self.below.is_none_or(|v| v < self.lower)
-    }
 }
 
 /// Checks the integer direction `a` exactly on the three sets. Returns the extremes when it
@@ -134,15 +115,9 @@ pub(crate) fn reduce_by_gcd(a: Vec<i64>, e: Extremes) -> (Vec<i64>, Extremes) {
     if g <= 1 {
         return (a, e);
     }
-    let g128 = g as i128;
     (
         a.into_iter().map(|v| v / g).collect(),
-        Extremes {
-            lower: e.lower / g128,
-            upper: e.upper / g128,
-            above: e.above.map(|v| v / g128),
-            below: e.below.map(|v| v / g128),
-        },
+        e.divided_by(g as i128),
     )
 }
 
@@ -419,15 +394,7 @@ pub(crate) fn decide_exactly(
             let (tags, weights) = simplex.into_tags_and_weights();
             ExactDecision::NotDescribed(tags, weights)
         }
-        GjkOutcome::Empty => ExactDecision::Described(
-            vec![0; max_abs.len()],
-            Extremes {
-                lower: 0,
-                upper: 0,
-                above: None,
-                below: None,
-            },
-        ),
+        GjkOutcome::Empty => ExactDecision::Described(vec![0; max_abs.len()], Extremes::default()),
         GjkOutcome::Stalled => ExactDecision::Undecided,
     }
 }

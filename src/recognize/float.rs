@@ -5,9 +5,10 @@ use super::budget::{direct_solve_cost, scan_cost, Meter};
 use super::conditioning::LinearMap;
 use super::exact::{
     barycentric_signed, closest_direction, origin_in_hull, reduce_by_gcd, round_to_certificate,
-    verify_certificate, Extremes,
+    verify_certificate,
 };
 use super::gjk::{gjk, GjkOutcome, GjkParams};
+use super::proof::Extremes;
 use super::simplex::Simplex;
 use super::support::{FloatSupport, Sets, SupportMap, Tag};
 use super::Stats;

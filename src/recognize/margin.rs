@@ -187,10 +187,7 @@ pub fn small_certificate(
             return Certificate {
                 origin: origin.clone(),
                 coefficients: a,
-                lower: e.lower,
-                upper: e.upper,
-                above: e.above,
-                below: e.below,
+                extremes: e,
             };
         }
         last = Some(a);

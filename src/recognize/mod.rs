@@ -65,13 +65,13 @@ mod simplex;
 mod stats;
 mod support;
 
-pub use proof::{Certificate, Outcome, Side, Witness};
+pub use proof::{Certificate, Extremes, Outcome, Side, Witness};
 pub use stats::Stats;
 
 use crate::model::Basis;
 use budget::{scan_cost, Meter};
 use conditioning::{LinearMap, Moments};
-use exact::{decide_exactly, dot_i128, verify_certificate, ExactDecision, Extremes};
+use exact::{decide_exactly, dot_i128, verify_certificate, ExactDecision};
 use float::{float_decide, power_of_two_scale, FloatAnswer};
 use lifted::LiftedSet;
 pub use margin::{max_margin_direction, small_certificate};
@@ -315,10 +315,7 @@ impl Recognizer {
         Some(Certificate {
             origin: self.origin.clone(),
             coefficients: a.clone(),
-            lower: e.lower,
-            upper: e.upper,
-            above: e.above,
-            below: e.below,
+            extremes: *e,
         })
     }
 
@@ -334,10 +331,7 @@ impl Recognizer {
         };
         out.origin.clone_from(&self.origin);
         out.coefficients.clone_from(a);
-        out.lower = e.lower;
-        out.upper = e.upper;
-        out.above = e.above;
-        out.below = e.below;
+        out.extremes = *e;
         true
     }
 
@@ -389,13 +383,7 @@ impl Recognizer {
         };
         if sets.is_empty() {
             // Nothing to separate: the zero function describes any set of inliers.
-            let e = Extremes {
-                lower: 0,
-                upper: 0,
-                above: None,
-                below: None,
-            };
-            return self.accept(vec![0; n], e);
+            return self.accept(vec![0; n], Extremes::default());
         }
         self.stats.float_runs += 1;
         // The float runs in power-of-two scaled coordinates, or in whitened ones (better

@@ -16,13 +16,10 @@ pub enum Side {
     Lower,
 }
 
-/// Proof that a set is described: the integer layer `lower ≤ a·F(p − origin) ≤ upper`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Certificate {
-    /// The local origin the points are taken relative to.
-    pub origin: Vec<i64>,
-    /// `a`, one integer per basis function (the constant's coefficient is zero).
-    pub coefficients: Vec<i64>,
+/// The exact values of a layer's function `a·F` on the three sets: the layer is
+/// `lower ≤ a·F ≤ upper`, and it separates when `below < lower` and `upper < above`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Extremes {
     /// `min_S a·F`.
     pub lower: i128,
     /// `max_S a·F`.
@@ -33,6 +30,35 @@ pub struct Certificate {
     pub below: Option<i128>,
 }
 
+impl Extremes {
+    /// True when the layer `[lower, upper]` strictly separates the outliers.
+    pub fn separates(&self) -> bool {
+        self.above.is_none_or(|v| v > self.upper) && self.below.is_none_or(|v| v < self.lower)
+    }
+
+    /// Every value divided by `g > 0`: the extremes of `(a / g)·F` when `g` divides `a`
+    /// (every value is then a multiple of `g`, so the division is exact).
+    pub(crate) fn divided_by(self, g: i128) -> Extremes {
+        Extremes {
+            lower: self.lower / g,
+            upper: self.upper / g,
+            above: self.above.map(|v| v / g),
+            below: self.below.map(|v| v / g),
+        }
+    }
+}
+
+/// Proof that a set is described: the integer layer `lower ≤ a·F(p − origin) ≤ upper`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Certificate {
+    /// The local origin the points are taken relative to.
+    pub origin: Vec<i64>,
+    /// `a`, one integer per basis function (the constant's coefficient is zero).
+    pub coefficients: Vec<i64>,
+    /// The values of `a·F` on the inliers (the layer's bounds) and on the outliers.
+    pub extremes: Extremes,
+}
+
 impl Certificate {
     /// The zero function's layer `0 ≤ 0 ≤ 0` at `origin`, over a basis of `dim` functions:
     /// what describes any set without outliers.
@@ -40,10 +66,7 @@ impl Certificate {
         Certificate {
             origin,
             coefficients: vec![0; dim],
-            lower: 0,
-            upper: 0,
-            above: None,
-            below: None,
+            extremes: Extremes::default(),
         }
     }
 

@@ -150,8 +150,8 @@ fn certificate_holds(
     let vs: Vec<i128> = s.iter().map(val).collect();
     let lower = *vs.iter().min().unwrap();
     let upper = *vs.iter().max().unwrap();
-    lower == c.lower
-        && upper == c.upper
+    lower == c.extremes.lower
+        && upper == c.extremes.upper
         && up.iter().all(|p| val(p) > upper)
         && lo.iter().all(|p| val(p) < lower)
 }
@@ -583,7 +583,7 @@ proptest! {
         match exact::decide_exactly(&sets, &[], &r.max_abs, &mut Meter::unlimited()) {
             exact::ExactDecision::Described(a, e) => {
                 prop_assert!(!inside, "exact says described, oracle says not");
-                let c = Certificate { origin: s[0].clone(), coefficients: a, lower: e.lower, upper: e.upper, above: e.above, below: e.below };
+                let c = Certificate { origin: s[0].clone(), coefficients: a, extremes: e };
                 prop_assert!(certificate_holds(basis.as_ref(), &c, &s, &up, &lo));
             }
             exact::ExactDecision::NotDescribed(tags, weights) => {
@@ -760,7 +760,7 @@ proptest! {
         match got {
             Some(FloatAnswer::Described(a, e)) => {
                 prop_assert_eq!(want, Outcome::Described);
-                let c = Certificate { origin: s[0].clone(), coefficients: a, lower: e.lower, upper: e.upper, above: e.above, below: e.below };
+                let c = Certificate { origin: s[0].clone(), coefficients: a, extremes: e };
                 prop_assert!(certificate_holds(basis.as_ref(), &c, &s, &up, &lo));
             }
             Some(FloatAnswer::NotDescribed(tags, weights)) => {
