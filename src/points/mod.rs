@@ -22,6 +22,7 @@ pub use thinnest::{Thinnest, ThinnestWork};
 
 use crate::error::Error;
 use crate::model::{Basis, Model};
+use crate::recognize::relative::relative;
 use crate::recognize::{small_certificate, Certificate, Outcome, Recognizer, Side, Stats, Witness};
 use num_bigint::BigInt;
 use std::sync::Arc;
@@ -252,12 +253,10 @@ pub fn recognize_points_with(
     let mut f = vec![0; basis.dim()];
     for (name, set) in sets.sets() {
         for (i, p) in set.iter().enumerate() {
-            let rel: Option<Vec<i64>> = p
-                .iter()
-                .zip(&origin)
-                .map(|(a, b)| a.checked_sub(*b))
-                .collect();
-            if rel.and_then(|rel| basis.lift(&rel, &mut f)).is_none() {
+            if relative(p, &origin)
+                .and_then(|rel| basis.lift(&rel, &mut f))
+                .is_none()
+            {
                 return Err(err(format!(
                     "{name}[{i}] = {p:?}: its lifting overflows 64-bit integers (the points are too far from {origin:?}, the middle of the inliers, for this basis)"
                 )));

@@ -59,7 +59,7 @@ mod gjk;
 mod lifted;
 mod margin;
 mod proof;
-mod relative;
+pub(crate) mod relative;
 mod scalar;
 mod simplex;
 mod stats;
