@@ -44,7 +44,7 @@ fn binomial(n: u32, k: u32) -> f64 {
 /// work in that local frame: a sextic around `(800, 600)` has absolute coefficients up to
 /// ~1e18, whose rounding alone would move the curve by ~1e-4 px. Equality (`==`) compares
 /// this stored representation, frame included.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Polynomial {
     /// Absolute coefficients, dense triangular storage, see [`index`].
     coeffs: [f64; N_COEFFS],
