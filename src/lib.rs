@@ -57,7 +57,7 @@
 //!         let c = &piece.certificate;
 //!         for p in &contour.points[piece.first..=piece.last] {
 //!             let f = c.value(&basis, &[p.x.into(), p.y.into()]).unwrap();
-//!             assert!(c.lower <= f && f <= c.upper);
+//!             assert!(c.extremes.lower <= f && f <= c.extremes.upper);
 //!         }
 //!     }
 //! }
