@@ -40,7 +40,7 @@ mod staircase;
 
 pub use colour::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
 
-pub use staircase::{path_staircases, staircases, StaircaseCount};
+pub use staircase::{staircases, StaircaseCount};
 
 /// The comparison of an expected mask with the mask of its rasterized SVG.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -15,7 +15,7 @@
 //! the pixels along the piece.
 
 use crate::curve::{CurveKind, Polynomial, MAX_DEGREE};
-use crate::decompose::{piece_outliers, OutlierRule, Piece};
+use crate::decompose::{piece_outliers, OutlierRule, Outliers, Piece};
 use crate::model::Basis;
 use crate::pixel::Pixel;
 use crate::recognize::{max_margin_direction, Certificate};
@@ -93,14 +93,14 @@ pub fn border_polynomial(
     piece: &Piece,
     rule: OutlierRule,
 ) -> Option<(Polynomial, f64)> {
-    let (right, left) = piece_outliers(points, piece.first, piece.last, rule);
+    let Outliers { right, left } = piece_outliers(points, piece.first, piece.last, rule);
     let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
     let mut low: Vec<[i64; 2]> = points[piece.first..=piece.last].iter().map(xy).collect();
     low.extend(left.iter().map(xy));
     let high: Vec<[i64; 2]> = right.iter().map(xy).collect();
     let origin = &piece.certificate.origin;
     let poly = match max_margin_direction(basis, origin, &low, &high, true) {
-        Some((a, level)) => polynomial_of(basis, origin, &a, level),
+        Some(m) => polynomial_of(basis, origin, &m.direction, m.level),
         None => level_polynomial(
             basis,
             &piece.certificate,

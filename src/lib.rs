@@ -105,18 +105,18 @@ pub use curve::{
 };
 pub use decompose::{
     decompose, decompose_cover, decompose_points, decompose_within, piece_outliers, Cover, Cut,
-    Decomposition, OutlierRule, Piece, WorkBudget,
+    Decomposition, OutlierRule, Outliers, Piece, WorkBudget,
 };
 pub use error::Error;
 pub use estimate::{work_estimate, WorkEstimate};
 pub use export::format::{document_bytes, Format, PictureFormat};
 pub use export::json::{colour_json, decomposition_json, JsonHeader, JsonRegion};
 pub use export::layers::{layers_document, SvgLayer};
-pub use export::picture::{decomposition_picture, default_scale};
+pub use export::picture::decomposition_picture;
 pub use export::svg::{smooth_svg_document, svg_document, SvgOptions, SvgOutput};
 pub use fidelity::{
-    band_check, compare, diff_image, fidelity, path_staircases, rasterize_svg, staircases,
-    BandCheck, FidelityReport, StaircaseCount,
+    band_check, compare, diff_image, fidelity, rasterize_svg, staircases, BandCheck,
+    FidelityReport, StaircaseCount,
 };
 pub use fidelity::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
 pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind};
@@ -137,6 +137,6 @@ pub use points::{
     ThinnestWork,
 };
 pub use recognize::{
-    max_margin_direction, recognize, Certificate, Extremes, Outcome, Recognizer, Side, Stats,
-    Witness,
+    max_margin_direction, recognize, Certificate, Extremes, MarginDirection, Outcome, Recognition,
+    Recognizer, Side, Stats, Witness,
 };

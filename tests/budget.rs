@@ -4,7 +4,7 @@
 
 use layertrace::{
     decompose, decompose_within, decomposition_json, piece_outliers, trace, Convention, Cut,
-    Decomposition, JsonHeader, Mask, Model, OutlierRule, Pixel, WorkBudget,
+    Decomposition, JsonHeader, Mask, Model, OutlierRule, Outliers, Pixel, WorkBudget,
 };
 
 mod common;
@@ -39,7 +39,7 @@ fn check_certificates(d: &Decomposition) {
             let inl: Vec<i128> = c.points[p.first..=p.last].iter().map(|&q| v(q)).collect();
             assert_eq!(inl.iter().min(), Some(&cert.extremes.lower), "{p:?}");
             assert_eq!(inl.iter().max(), Some(&cert.extremes.upper), "{p:?}");
-            let (right, left) = piece_outliers(&c.points, p.first, p.last, d.rule);
+            let Outliers { right, left } = piece_outliers(&c.points, p.first, p.last, d.rule);
             assert!(
                 right.iter().all(|&q| v(q) > cert.extremes.upper),
                 "{p:?} right"

@@ -4,7 +4,7 @@
 
 use layertrace::{
     decompose, decompose_cover, load_path, piece_outliers, trace, Convention, Cover, LoadOptions,
-    Model, OutlierRule, Pixel, WorkBudget,
+    Model, OutlierRule, Outliers, Pixel, WorkBudget,
 };
 use std::path::Path;
 use std::process::Command;
@@ -71,7 +71,7 @@ fn optimal_never_more_pieces_than_greedy_on_every_sample() {
                         Some(&cert.extremes.upper),
                         "{path} {model}"
                     );
-                    let (right, left) =
+                    let Outliers { right, left } =
                         piece_outliers(&c.points, p.first, p.last, OutlierRule::NotInPiece);
                     assert!(
                         right.iter().all(|&q| v(q) > cert.extremes.upper),

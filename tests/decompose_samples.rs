@@ -3,7 +3,8 @@
 
 use layertrace::{
     decompose, load_path, max_margin_direction, piece_outliers, recognize, trace, Basis,
-    Convention, Decomposition, LoadOptions, Model, Outcome, OutlierRule, Pixel,
+    Convention, Decomposition, LoadOptions, MarginDirection, Model, Outcome, OutlierRule, Outliers,
+    Pixel, Recognition,
 };
 use std::path::Path;
 use std::process::Command;
@@ -57,7 +58,7 @@ fn certificates_and_maximality_on_every_sample() {
                         Some(&cert.extremes.upper),
                         "{path} {model}"
                     );
-                    let (right, left) =
+                    let Outliers { right, left } =
                         piece_outliers(&c.points, p.first, p.last, OutlierRule::NotInPiece);
                     assert!(
                         right.iter().all(|&q| v(q) > cert.extremes.upper),
@@ -69,13 +70,19 @@ fn certificates_and_maximality_on_every_sample() {
                     );
                     // Maximal: one more point is not described, with a verified witness.
                     if p.last + 1 < n {
-                        let (r2, l2) =
-                            piece_outliers(&c.points, p.first, p.last + 1, OutlierRule::NotInPiece);
+                        let Outliers {
+                            right: r2,
+                            left: l2,
+                        } = piece_outliers(&c.points, p.first, p.last + 1, OutlierRule::NotInPiece);
                         let pts: Vec<Vec<i64>> =
                             c.points[p.first..=p.last + 1].iter().map(xy).collect();
                         let r2: Vec<Vec<i64>> = r2.iter().map(xy).collect();
                         let l2: Vec<Vec<i64>> = l2.iter().map(xy).collect();
-                        let (o, _, w) = recognize(arc.clone(), &pts, &r2, &l2);
+                        let Recognition {
+                            outcome: o,
+                            witness: w,
+                            ..
+                        } = recognize(arc.clone(), &pts, &r2, &l2);
                         assert_eq!(o, Outcome::NotDescribed, "{path} {model}: piece could grow");
                         assert!(w.unwrap().verify(&basis));
                     }
@@ -156,7 +163,7 @@ fn largest_margin_direction_for_every_piece() {
             let basis = model.basis();
             for (c, pieces) in d.contours.iter().zip(&d.pieces) {
                 for piece in pieces {
-                    let (right, left) =
+                    let Outliers { right, left } =
                         piece_outliers(&c.points, piece.first, piece.last, OutlierRule::NotInPiece);
                     if right.is_empty() || piece.certificate.coefficients.iter().all(|&v| v == 0) {
                         continue;
@@ -166,13 +173,17 @@ fn largest_margin_direction_for_every_piece() {
                     low.extend(left.iter().map(xy));
                     let high: Vec<Vec<i64>> = right.iter().map(xy).collect();
                     let origin = &piece.certificate.origin;
-                    let (a, level) = max_margin_direction(&basis, origin, &low, &high, true)
-                        .unwrap_or_else(|| {
+                    let MarginDirection {
+                        direction: a,
+                        level,
+                    } = max_margin_direction(&basis, origin, &low, &high, true).unwrap_or_else(
+                        || {
                             panic!(
                                 "{path} {model}: no direction for piece {}..={}",
                                 piece.first, piece.last
                             )
-                        });
+                        },
+                    );
                     let f = |p: &Vec<i64>| {
                         let mut v = vec![0i64; basis.dim()];
                         basis

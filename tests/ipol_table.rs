@@ -11,7 +11,7 @@
 
 use layertrace::{
     decompose, load_path, piece_outliers, recognize, trace, Compat, Convention, LoadOptions, Model,
-    Outcome, OutlierRule, Pixel, Threshold,
+    Outcome, OutlierRule, Outliers, Pixel, Recognition, Threshold,
 };
 use std::collections::HashMap;
 use std::path::Path;
@@ -127,12 +127,16 @@ fn article_table_with_exact_explanations() {
                         (last.first, last.last),
                         (c.points.len() - 1, c.points.len() - 1)
                     );
-                    let (right, left) =
+                    let Outliers { right, left } =
                         piece_outliers(&c.points, prev.first, last.last, OutlierRule::Any);
                     let inl: Vec<Vec<i64>> = c.points[prev.first..].iter().map(xy).collect();
                     let r: Vec<Vec<i64>> = right.iter().map(xy).collect();
                     let l: Vec<Vec<i64>> = left.iter().map(xy).collect();
-                    let (o, _, w) = recognize(Arc::new(model.basis()), &inl, &r, &l);
+                    let Recognition {
+                        outcome: o,
+                        witness: w,
+                        ..
+                    } = recognize(Arc::new(model.basis()), &inl, &r, &l);
                     assert_eq!(o, Outcome::NotDescribed, "{name} {mname} closing piece");
                     assert!(w.unwrap().verify(&model.basis()));
                     eprintln!("{name} {mname}: parted at the closing pixel");
@@ -148,7 +152,8 @@ fn article_table_with_exact_explanations() {
                     .max()
                     .unwrap_or(first);
                 let decide = |last: usize| {
-                    let (right, left) = piece_outliers(&c.points, first, last, OutlierRule::Any);
+                    let Outliers { right, left } =
+                        piece_outliers(&c.points, first, last, OutlierRule::Any);
                     let inl: Vec<Vec<i64>> = c.points[first..=last].iter().map(xy).collect();
                     let r: Vec<Vec<i64>> = right.iter().map(xy).collect();
                     let l: Vec<Vec<i64>> = left.iter().map(xy).collect();
@@ -156,13 +161,21 @@ fn article_table_with_exact_explanations() {
                 };
                 if ref_last > our_last {
                     // They grew through a piece we reject: our witness must verify.
-                    let (o, _, w) = decide(our_last + 1);
+                    let Recognition {
+                        outcome: o,
+                        witness: w,
+                        ..
+                    } = decide(our_last + 1);
                     assert_eq!(o, Outcome::NotDescribed, "{name} {mname}");
                     assert!(w.unwrap().verify(&model.basis()), "{name} {mname}: witness");
                     explained.0 += 1;
                 } else {
                     // They stopped where we hold a certificate.
-                    let (o, cert, _) = decide(ref_last + 1);
+                    let Recognition {
+                        outcome: o,
+                        certificate: cert,
+                        ..
+                    } = decide(ref_last + 1);
                     assert_eq!(o, Outcome::Described, "{name} {mname}");
                     assert!(cert.is_some());
                     explained.1 += 1;

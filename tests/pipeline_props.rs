@@ -4,7 +4,7 @@
 
 use layertrace::{
     decompose, fidelity, piece_outliers, svg_document, trace, Convention, Mask, Model, OutlierRule,
-    Pixel, SvgOptions,
+    Outliers, Pixel, SvgOptions,
 };
 use proptest::prelude::*;
 use std::collections::HashSet;
@@ -129,7 +129,7 @@ fn check(p: &Pattern, w: u32, h: u32) -> Result<(), TestCaseError> {
                     prop_assert!(cert.extremes.lower <= v(q) && v(q) <= cert.extremes.upper);
                     covered.insert(*q);
                 }
-                let (r, l) =
+                let Outliers { right: r, left: l } =
                     piece_outliers(&c.points, piece.first, piece.last, OutlierRule::NotInPiece);
                 prop_assert!(r.iter().all(|q| v(q) > cert.extremes.upper));
                 prop_assert!(l.iter().all(|q| v(q) < cert.extremes.lower));

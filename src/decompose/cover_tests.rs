@@ -18,7 +18,7 @@ fn described_alone(basis: &Arc<dyn Basis>, piece: &[Pixel], rule: OutlierRule) -
     if piece.len() <= 2 {
         return true;
     }
-    let (right, left) = piece_outliers(piece, 0, piece.len() - 1, rule);
+    let Outliers { right, left } = piece_outliers(piece, 0, piece.len() - 1, rule);
     let mut rec = Recognizer::new(basis.clone(), &xy(piece[0])).unwrap();
     for p in piece {
         rec.add_inlier(&xy(*p));
@@ -111,7 +111,7 @@ fn check_cover(basis: &Arc<dyn Basis>, pts: &[Pixel], pieces: &[Piece], rule: Ou
                 "inlier {q:?} of {p:?}"
             );
         }
-        let (right, left) = piece_outliers(pts, p.first, p.last, rule);
+        let Outliers { right, left } = piece_outliers(pts, p.first, p.last, rule);
         assert!(
             right.iter().all(|&q| v(q) > c.extremes.upper),
             "right outliers of {p:?}"

@@ -185,17 +185,22 @@ pub fn neighbour_sides(prev: Pixel, cur: Pixel, next: Pixel) -> Option<[(Pixel, 
     Some(out)
 }
 
-/// The RIGHT and LEFT outliers of the piece `points[first..=last]` (each pixel once per side).
-pub fn piece_outliers(
-    points: &[Pixel],
-    first: usize,
-    last: usize,
-    rule: OutlierRule,
-) -> (Vec<Pixel>, Vec<Pixel>) {
+/// The outliers of a piece: the 4-neighbours of its interior points on either side of it.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Outliers {
+    /// RIGHT of the path (`S⁺`, strictly above the layer), each pixel once.
+    pub right: Vec<Pixel>,
+    /// LEFT of the path (`S⁻`, strictly below the layer), each pixel once.
+    pub left: Vec<Pixel>,
+}
+
+/// The RIGHT and LEFT outliers of the piece `points[first..=last]` under `rule` (none when
+/// the piece has no interior point or `last` is out of range).
+pub fn piece_outliers(points: &[Pixel], first: usize, last: usize, rule: OutlierRule) -> Outliers {
     let mut right = Vec::new();
     let mut left = Vec::new();
     if last >= points.len() || last < first + 2 {
-        return (right, left);
+        return Outliers { right, left };
     }
     let piece: PixelSet = points[first..=last].iter().copied().collect();
     let (mut seen_right, mut seen_left) = (PixelSet::default(), PixelSet::default());
@@ -215,7 +220,7 @@ pub fn piece_outliers(
             }
         }
     }
-    (right, left)
+    Outliers { right, left }
 }
 
 fn xy(p: Pixel) -> [i64; 2] {
@@ -359,7 +364,7 @@ pub(crate) fn decompose_reporting(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::recognize::{recognize, Outcome};
+    use crate::recognize::{recognize, Outcome, Recognition};
 
     fn px(v: &[(i32, i32)]) -> Vec<Pixel> {
         v.iter().map(|&(x, y)| Pixel::new(x, y)).collect()
@@ -420,7 +425,7 @@ mod tests {
         let arc: Arc<dyn Basis> = Arc::new(model.basis());
         let basis = arc.as_ref();
         for (k, p) in pieces.iter().enumerate() {
-            let (right, left) = piece_outliers(pts, p.first, p.last, rule);
+            let Outliers { right, left } = piece_outliers(pts, p.first, p.last, rule);
             let c = &p.certificate;
             let v = |q: Pixel| c.value(basis, &xy(q)).unwrap();
             for q in &pts[p.first..=p.last] {
@@ -438,14 +443,17 @@ mod tests {
             }
             // Maximality: the piece plus the next point is not described.
             if p.last + 1 < pts.len() {
-                let (r2, l2) = piece_outliers(pts, p.first, p.last + 1, rule);
+                let Outliers {
+                    right: r2,
+                    left: l2,
+                } = piece_outliers(pts, p.first, p.last + 1, rule);
                 let inl: Vec<Vec<i64>> = pts[p.first..=p.last + 1]
                     .iter()
                     .map(|&q| xy(q).to_vec())
                     .collect();
                 let r2: Vec<Vec<i64>> = r2.iter().map(|&q| xy(q).to_vec()).collect();
                 let l2: Vec<Vec<i64>> = l2.iter().map(|&q| xy(q).to_vec()).collect();
-                let (o, _, _) = recognize(arc.clone(), &inl, &r2, &l2);
+                let Recognition { outcome: o, .. } = recognize(arc.clone(), &inl, &r2, &l2);
                 assert_eq!(o, Outcome::NotDescribed, "piece {k} could have grown");
             }
         }

@@ -38,7 +38,7 @@
 
 use super::reach::Reach;
 use super::window::{Stop, Window};
-use super::{piece_outliers, xy, OutlierRule, Piece, WorkBudget};
+use super::{piece_outliers, xy, OutlierRule, Outliers, Piece, WorkBudget};
 use crate::pixel::Pixel;
 use crate::recognize::{Certificate, Outcome, Recognizer, Side};
 
@@ -284,7 +284,7 @@ fn certify(
     if last == first {
         return Some(certificate);
     }
-    let (right, left) = piece_outliers(points, first, last, rule);
+    let Outliers { right, left } = piece_outliers(points, first, last, rule);
     for p in &points[first + 1..=last] {
         rec.add_inlier(&xy(*p));
     }

@@ -26,7 +26,7 @@
 //! exactly on the piece's own sets): `-5x - 8y` with `0 ≤ f ≤ 7` rather than whatever
 //! scale the incremental recognizer's rounding left.
 
-use crate::decompose::{piece_outliers, Decomposition};
+use crate::decompose::{piece_outliers, Decomposition, Outliers};
 use crate::level::piece_kind;
 use crate::recognize::small_certificate;
 use std::fmt::Write as _;
@@ -99,7 +99,7 @@ pub(crate) fn write_contours(d: &Decomposition, margin: i64, s: &mut String) {
                 s.push_str(",\n    ");
             }
             let xy = |q: &crate::pixel::Pixel| vec![i64::from(q.x), i64::from(q.y)];
-            let (right, left) = piece_outliers(&c.points, p.first, p.last, d.rule);
+            let Outliers { right, left } = piece_outliers(&c.points, p.first, p.last, d.rule);
             let small = small_certificate(
                 basis_ref,
                 &p.certificate,
@@ -222,7 +222,7 @@ mod tests {
     use super::*;
     use crate::bitmap::Mask;
     use crate::contour::{trace, Convention};
-    use crate::decompose::{decompose, piece_outliers, OutlierRule};
+    use crate::decompose::{decompose, piece_outliers, OutlierRule, Outliers};
     use crate::model::{Basis, Model};
 
     /// Parses the JSON back and re-checks every inequality from the numbers written alone.
@@ -292,7 +292,7 @@ mod tests {
                     for p in &c.points[first..=last] {
                         assert!(lo <= f(p) && f(p) <= hi);
                     }
-                    let (right, left) =
+                    let Outliers { right, left } =
                         piece_outliers(&c.points, first, last, OutlierRule::NotInPiece);
                     assert!(right.iter().all(|p| f(p) > hi));
                     assert!(left.iter().all(|p| f(p) < lo));

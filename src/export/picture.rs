@@ -16,7 +16,7 @@ const CYCLE: [Rgb<u8>; 3] = [Rgb([220, 30, 30]), Rgb([30, 160, 30]), Rgb([30, 70
 const MARK: Rgb<u8> = Rgb([20, 20, 20]);
 
 /// The default enlargement: about 800 pixels on the longer side, between 1 and 16.
-pub fn default_scale(width: u32, height: u32) -> u32 {
+pub(crate) fn default_scale(width: u32, height: u32) -> u32 {
     (800 / width.max(height).max(1)).clamp(1, 16)
 }
 

@@ -98,7 +98,7 @@ impl Counter {
 
 /// Staircases in one path's data (`d` attribute). Parsing stops at the first error, as
 /// SVG renderers do.
-pub fn path_staircases(d: &str) -> StaircaseCount {
+pub(crate) fn path_staircases(d: &str) -> StaircaseCount {
     let mut c = Counter::default();
     let (mut cur, mut start) = ((0.0, 0.0), (0.0, 0.0));
     for seg in PathParser::from(d) {

@@ -125,6 +125,10 @@ impl<'a> Stretcher<'a> {
         // A line keeps the background beside its end pixels on its far side too, where it
         // can (as the polygon's segments do); curves keep the piece's own border curve,
         // closer to the true shape (the render check decides where they are drawn).
+        // `NotInPiece` whatever rule the decomposition used: the drawing must keep the
+        // background beside the piece outside, and for a piece described under `Any` the
+        // two rules give the same outliers (none can be one of its pixels, which lie in the
+        // layer, not strictly beside it).
         let straight = basis.dim() == Model::Line.basis().dim();
         let border = straight
             .then(|| self.closed_border(basis, piece.first, piece.last, false))
@@ -256,7 +260,7 @@ impl<'a> Stretcher<'a> {
             (low.iter().map(xy).collect(), high.iter().map(xy).collect());
         let origin = xy(&self.points[first]);
         let poly = max_margin_direction(basis, &origin, &low, &high, scaled)
-            .and_then(|(a, level)| polynomial_of(basis, &origin, &a, level))?;
+            .and_then(|m| polynomial_of(basis, &origin, &m.direction, m.level))?;
         let clearance = low
             .iter()
             .chain(&high)

@@ -77,6 +77,16 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
     Some(map.pull_back(&direction))
 }
 
+/// A separating direction of `a·F` and the level between the two sets it separates: `a·F <
+/// level` on one set, `> level` on the other (in `f64`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MarginDirection {
+    /// `a`, one coefficient per basis function.
+    pub direction: Vec<f64>,
+    /// Half-way between the two sets' extreme values of `a·F`.
+    pub level: f64,
+}
+
 /// The separating direction of largest margin between `low` and `high` point sets (relative
 /// to `origin`), and the level half-way between them: `a·F(p) < level` on `low`,
 /// `> level` on `high`, in `f64`. Not a certificate: a drawing aid for exporters, which want
@@ -93,7 +103,7 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
     low: &[P],
     high: &[P],
     scaled: bool,
-) -> Option<(Vec<f64>, f64)> {
+) -> Option<MarginDirection> {
     let (pd, n) = (basis.point_dim(), basis.dim());
     if low.is_empty()
         || high.is_empty()
@@ -126,7 +136,10 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
         .float_rows()
         .map(value)
         .fold(f64::INFINITY, f64::min);
-    (top < bottom).then(|| (y, (top + bottom) / 2.0))
+    (top < bottom).then(|| MarginDirection {
+        direction: y,
+        level: (top + bottom) / 2.0,
+    })
 }
 
 /// A certificate for the same sets with small coefficients, for people who read the

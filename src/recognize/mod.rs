@@ -74,7 +74,7 @@ use conditioning::{LinearMap, Moments};
 use exact::{decide_exactly, dot_i128, verify_certificate, ExactDecision};
 use float::{float_decide, power_of_two_scale, FloatAnswer};
 use lifted::LiftedSet;
-pub use margin::{max_margin_direction, small_certificate};
+pub use margin::{max_margin_direction, small_certificate, MarginDirection};
 use num_rational::BigRational;
 use relative::{relative, relative_into};
 use simplex::Simplex;
@@ -481,19 +481,35 @@ impl Recognizer {
     }
 }
 
-/// Decides one recognition problem from scratch (convenience for tests and one-off use).
+/// The answer of [`recognize`]: the outcome and the proof that goes with it.
+#[derive(Clone, Debug)]
+pub struct Recognition {
+    /// Whether the set is described.
+    pub outcome: Outcome,
+    /// The layer, when [`Outcome::Described`].
+    pub certificate: Option<Certificate>,
+    /// The proof that no layer exists, when [`Outcome::NotDescribed`].
+    pub witness: Option<Witness>,
+}
+
+/// Decides one recognition problem from scratch (convenience for tests and one-off use);
+/// the origin is the first inlier.
 pub fn recognize(
     basis: Arc<dyn Basis>,
     inliers: &[Vec<i64>],
     upper: &[Vec<i64>],
     lower: &[Vec<i64>],
-) -> (Outcome, Option<Certificate>, Option<Witness>) {
+) -> Recognition {
     let origin = inliers
         .first()
         .cloned()
         .unwrap_or_else(|| vec![0; basis.point_dim()]);
     let Some(mut r) = Recognizer::new(basis, &origin) else {
-        return (Outcome::Undecided, None, None);
+        return Recognition {
+            outcome: Outcome::Undecided,
+            certificate: None,
+            witness: None,
+        };
     };
     for p in inliers {
         r.add_inlier(p);
@@ -504,8 +520,11 @@ pub fn recognize(
     for p in lower {
         r.add_outlier(p, Side::Lower);
     }
-    let o = r.recognize();
-    (o, r.certificate(), r.witness().cloned())
+    Recognition {
+        outcome: r.recognize(),
+        certificate: r.certificate(),
+        witness: r.witness().cloned(),
+    }
 }
 
 #[cfg(test)]

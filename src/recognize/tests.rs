@@ -191,7 +191,11 @@ fn check_instance(
     tally: &mut Tally,
 ) -> Result<(), TestCaseError> {
     let basis: Arc<dyn Basis> = Arc::new(model.basis());
-    let (outcome, cert, wit) = recognize(basis.clone(), s, up, lo);
+    let Recognition {
+        outcome,
+        certificate: cert,
+        witness: wit,
+    } = recognize(basis.clone(), s, up, lo);
     tally.instances += 1;
     prop_assert_ne!(
         outcome,
@@ -362,7 +366,11 @@ fn degenerate_cases() {
         )
         .unwrap();
         // One point in both outlier sets: never described.
-        let (o, _, w) = recognize(
+        let Recognition {
+            outcome: o,
+            witness: w,
+            ..
+        } = recognize(
             Arc::new(model.basis()),
             &[p(0, 0), p(1, 0)],
             &[p(5, 5)],
@@ -371,7 +379,7 @@ fn degenerate_cases() {
         assert_eq!(o, Outcome::NotDescribed, "{model:?}");
         assert!(w.unwrap().verify(&model.basis()));
         // An outlier equal to an inlier: never described.
-        let (o, _, _) = recognize(
+        let Recognition { outcome: o, .. } = recognize(
             Arc::new(model.basis()),
             &[p(0, 0), p(2, 1)],
             &[p(2, 1)],
@@ -384,7 +392,7 @@ fn degenerate_cases() {
         let lo: Vec<_> = (0..20).map(|i| p(i, 2 * i - 1)).collect();
         check_instance(model, &s, &up, &lo, &mut tally).unwrap();
         assert_eq!(
-            recognize(Arc::new(model.basis()), &s, &up, &lo).0,
+            recognize(Arc::new(model.basis()), &s, &up, &lo).outcome,
             Outcome::Described
         );
         // Large coordinates.
@@ -423,7 +431,11 @@ fn degenerate_cases() {
         p(3, -2),
     ];
     for model in [Model::Circle, Model::Conic, Model::Poly(3)] {
-        let (o, c, _) = recognize(Arc::new(model.basis()), &s, &out, &inn);
+        let Recognition {
+            outcome: o,
+            certificate: c,
+            ..
+        } = recognize(Arc::new(model.basis()), &s, &out, &inn);
         assert_eq!(o, Outcome::Described, "{model:?}");
         assert!(certificate_holds(
             &model.basis(),
@@ -435,7 +447,7 @@ fn degenerate_cases() {
     }
     // The line model cannot describe a circle.
     assert_eq!(
-        recognize(Arc::new(Model::Line.basis()), &s, &out, &inn).0,
+        recognize(Arc::new(Model::Line.basis()), &s, &out, &inn).outcome,
         Outcome::NotDescribed
     );
 }
@@ -479,7 +491,9 @@ fn incremental_equals_from_scratch() {
                 lo.push(q);
             }
             let inc = rec.recognize();
-            let (scratch, _, _) = recognize(basis.clone(), &s, &up, &lo);
+            let Recognition {
+                outcome: scratch, ..
+            } = recognize(basis.clone(), &s, &up, &lo);
             assert_eq!(inc, scratch, "{model:?} after {} points", s.len());
             if inc == Outcome::Described {
                 assert!(certificate_holds(
@@ -619,7 +633,7 @@ proptest! {
         prop_assume!(coefs.iter().any(|&c| c != 0));
         let (s, up, lo) = banded_instance(model, coefs, band, None, 6);
         prop_assume!(!s.is_empty());
-        let (o, c, _) = recognize(Arc::new(model.basis()), &s, &up, &lo);
+        let Recognition { outcome: o, certificate: c, .. } = recognize(Arc::new(model.basis()), &s, &up, &lo);
         prop_assert_eq!(o, Outcome::Described);
         let c = c.unwrap();
         let small = small_certificate(&basis, &c, &s, &up, &lo);
