@@ -85,8 +85,8 @@ mod recognize;
 mod vectorize;
 
 pub use vectorize::{
-    vectorize, Border, BorderGraph, BorderSource, ColourLayer, ColourVectorized, Fidelity, Layout,
-    Options, Partition, PartitionBorder, Progress, ProgressFn, Source, Stage, Vectorized,
+    vectorize, ColourLayer, ColourVectorized, Fidelity, Layout, Options, Progress, ProgressFn,
+    Source, Stage, Vectorized,
 };
 
 pub use bitmap::{
@@ -98,7 +98,7 @@ pub use bitmap::{
     threshold_image, Band, Cleaned, Compat, LoadOptions, Loaded, Mask, ParseThresholdError,
     Threshold, MAX_BAND,
 };
-pub use contour::{trace, Contour, Convention};
+pub use contour::{trace, Border, BorderGraph, Contour, Convention};
 pub use curve::{
     level_curve_path, Conic, CurveKind, EllipseParams, HyperbolaParams, ParabolaParams,
     PathCommand, Polynomial, MAX_DEGREE,
@@ -126,8 +126,8 @@ pub use num_bigint::BigInt;
 /// See [`BigInt`].
 pub use num_rational::BigRational;
 pub use outline::{
-    contour_path, CommandCounts, ContourPath, EdgeClipping, FallbackCounts, JoinCounts,
-    OutlineOptions, MAX_GRID,
+    contour_path, BorderSource, CommandCounts, ContourPath, EdgeClipping, FallbackCounts,
+    JoinCounts, OutlineOptions, Partition, PartitionBorder, MAX_GRID,
 };
 pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
 pub use pixel::Pixel;

@@ -4,13 +4,19 @@
 //! linear in the number of pixels plus the total contour length:
 //! - `moore`: the default convention, Moore-neighbour tracing of each component and hole;
 //! - `flood`: the bit-parallel span flood fill that finds the components and holes;
-//! - `crack`: the IPOL convention, crack following as the article's reference code does.
+//! - `crack`: the IPOL convention, crack following as the article's reference code does;
+//! - `borders`: the borders between the regions of a colour image ([`BorderGraph`]), cut at
+//!   their junctions, for the partition layout.
 
+mod borders;
 mod crack;
 mod flood;
 mod moore;
 #[cfg(test)]
 mod tests;
+
+pub(crate) use borders::crack_sides;
+pub use borders::{Border, BorderGraph};
 
 use crate::bitmap::Mask;
 use crate::pixel::Pixel;

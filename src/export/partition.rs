@@ -25,9 +25,9 @@ use std::fmt::Write as _;
 
 use super::json::{quote, write_contours};
 use super::svg::{drop_closing_line, write_path_data, xml_escape};
+use crate::contour::crack_sides;
 use crate::decompose::Decomposition;
-use crate::outline::{CommandCounts, ContourPath};
-use crate::vectorize::{BorderSource, Partition};
+use crate::outline::{BorderSource, CommandCounts, ContourPath, Partition};
 
 /// Per crack-side pixel: the `(contour, piece)` pairs of a region's decomposition there.
 type PiecesAt = HashMap<(i64, i64), Vec<(usize, usize)>>;
@@ -172,7 +172,7 @@ pub(crate) fn partition_json(
         let mut pieces: Vec<(usize, usize)> = Vec::new();
         if let Some((region, which)) = owner {
             for c in b.corners.windows(2) {
-                let px = crate::vectorize::crack_sides(c[0], c[1])[which];
+                let px = crack_sides(c[0], c[1])[which];
                 if let Some(v) = beside[region].get(&px) {
                     pieces.extend(v.iter().copied());
                 }

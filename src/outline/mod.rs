@@ -33,6 +33,7 @@ mod builder;
 mod cracks;
 mod cut;
 mod joins;
+mod partition;
 mod path;
 mod render_check;
 mod separation;
@@ -42,6 +43,8 @@ mod vertices;
 
 pub(crate) use band_path::{band_contour_path, has_staircase};
 pub(crate) use cut::{cut, Loop};
+pub(crate) use partition::{corner, loop_path, reverse};
+pub use partition::{BorderSource, Partition, PartitionBorder};
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
 pub use render_check::EdgeClipping;
 

@@ -70,7 +70,7 @@ pub struct ColourVectorized {
     pub fidelity: Option<ColourFidelity>,
     /// With [`Layout::Partition`](super::Layout::Partition): the borders, each drawn once,
     /// and each region's loops of them.
-    pub partition: Option<super::Partition>,
+    pub partition: Option<crate::outline::Partition>,
 }
 
 /// What [`run`] returns to [`vectorize`](super::vectorize).

@@ -1,17 +1,13 @@
 //! The one-call entry point: an image in; the SVG, the decomposition and whatever else was
 //! asked out.
 
-mod borders;
 mod colour;
 mod options;
 mod partition;
 mod partition_run;
 
-pub(crate) use borders::crack_sides;
-pub use borders::{Border, BorderGraph};
 pub use colour::{ColourLayer, ColourVectorized};
 pub use options::{Layout, Options, Progress, ProgressFn, Stage};
-pub use partition::{BorderSource, Partition, PartitionBorder};
 
 use std::path::{Path, PathBuf};
 
