@@ -85,8 +85,8 @@ mod recognize;
 mod vectorize;
 
 pub use vectorize::{
-    vectorize, ColourLayer, ColourVectorized, Fidelity, Layout, Options, Progress, ProgressFn,
-    Source, Stage, Vectorized,
+    vectorize, ColourLayer, ColourVectorized, Fidelity, Layout, Options, ParseLayoutError,
+    Progress, ProgressFn, Source, Stage, Vectorized,
 };
 
 pub use bitmap::{

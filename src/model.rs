@@ -203,6 +203,30 @@ pub enum Model {
 pub const MAX_POLY_DEGREE: u32 = 6;
 
 impl Model {
+    /// Parses the name of a model for images (the command line's `--model`): `line`,
+    /// `circle`, `conic` or `poly:D`.
+    ///
+    /// Returns an error naming the image models if `s` is unknown or a model of 3-D point
+    /// sets (`quadric3`, `poly3:D`, which only `layertrace recognize` takes).
+    ///
+    /// ```
+    /// use layertrace::Model;
+    /// assert_eq!(Model::parse_image_model("poly:3"), Ok(Model::Poly(3)));
+    /// let e = Model::parse_image_model("quadric3").unwrap_err();
+    /// assert!(e.to_string().contains("3-D point sets"));
+    /// ```
+    pub fn parse_image_model(s: &str) -> Result<Model, ParseModelError> {
+        let err = |kind| ParseModelError {
+            name: s.to_string(),
+            kind,
+        };
+        match s.parse::<Model>() {
+            Ok(Model::Quadric3 | Model::Poly3(_)) => Err(err(ParseModelErrorKind::PointSetsOnly)),
+            Ok(m) => Ok(m),
+            Err(_) => Err(err(ParseModelErrorKind::UnknownImageModel)),
+        }
+    }
+
     /// The basis of this model.
     pub fn basis(self) -> PolynomialBasis {
         let b = match self {
@@ -264,17 +288,48 @@ impl fmt::Display for Model {
     }
 }
 
-/// The error of parsing a [`Model`] name.
+/// The error of parsing a [`Model`] name: the name is unknown, or (for
+/// [`Model::parse_image_model`]) a model of 3-D point sets.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseModelError(String);
+pub struct ParseModelError {
+    name: String,
+    kind: ParseModelErrorKind,
+}
+
+/// What was wrong with the name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ParseModelErrorKind {
+    /// No model has this name.
+    Unknown,
+    /// No image model has this name (it may be a 3-D one's, or no model's).
+    UnknownImageModel,
+    /// A model of 3-D point sets where an image model is wanted.
+    PointSetsOnly,
+}
+
+/// The models an image can be traced with, as the errors name them.
+const IMAGE_MODELS: &str = "line, circle, conic or poly:D (D = 1..=6)";
+const _: () = assert!(
+    MAX_POLY_DEGREE == 6,
+    "IMAGE_MODELS names the largest degree"
+);
 
 impl fmt::Display for ParseModelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "unknown model '{}': expected line, circle, conic, poly:D (D = 1..={MAX_POLY_DEGREE}), quadric3 or poly3:D",
-            self.0
-        )
+        let name = &self.name;
+        match self.kind {
+            ParseModelErrorKind::Unknown => write!(
+                f,
+                "unknown model '{name}': expected line, circle, conic, poly:D (D = 1..={MAX_POLY_DEGREE}), quadric3 or poly3:D"
+            ),
+            ParseModelErrorKind::UnknownImageModel => {
+                write!(f, "unknown model '{name}': expected {IMAGE_MODELS}")
+            }
+            ParseModelErrorKind::PointSetsOnly => write!(
+                f,
+                "'{name}' is a model of 3-D point sets (layertrace recognize); images take {IMAGE_MODELS}"
+            ),
+        }
     }
 }
 
@@ -284,7 +339,10 @@ impl FromStr for Model {
     type Err = ParseModelError;
 
     fn from_str(s: &str) -> Result<Model, ParseModelError> {
-        let err = || ParseModelError(s.to_string());
+        let err = || ParseModelError {
+            name: s.to_string(),
+            kind: ParseModelErrorKind::Unknown,
+        };
         let degree = |d: &str| {
             d.parse::<u32>()
                 .ok()

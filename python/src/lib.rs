@@ -66,23 +66,12 @@ struct Made {
 }
 
 fn model(s: &str) -> Result<Model, String> {
-    const IMAGE_MODELS: &str = "line, circle, conic or poly:D (D = 1..=6)";
-    match s.parse::<Model>() {
-        Ok(Model::Quadric3 | Model::Poly3(_)) => Err(format!(
-            "'{s}' is a model of 3-D point sets (layertrace recognize); images take {IMAGE_MODELS}"
-        )),
-        Ok(m) => Ok(m),
-        Err(_) => Err(format!("unknown model '{s}': expected {IMAGE_MODELS}")),
-    }
+    Model::parse_image_model(s).map_err(|e| e.to_string())
 }
 
 /// `stack` or `partition`, as the command line's `--layout`.
 fn layout(s: &str) -> Result<Layout, String> {
-    match s {
-        "stack" => Ok(Layout::Stack),
-        "partition" => Ok(Layout::Partition),
-        other => Err(format!("unknown layout '{other}': expected stack or partition")),
-    }
+    s.parse().map_err(|e: layertrace::ParseLayoutError| e.to_string())
 }
 
 /// `N` (0..=255), `otsu`, or `adaptive[:R[:K]]`, as the command line's `--threshold`.

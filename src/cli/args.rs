@@ -1,7 +1,7 @@
 //! The command line: every option, checked when it is parsed.
 
 use clap::Parser;
-use layertrace::{Cover, Format, Model, Threshold};
+use layertrace::{Cover, Format, Layout, Model, ParseLayoutError, Threshold};
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
@@ -174,9 +174,8 @@ pub struct Args {
     /// shared border drawn once and used by both: no overlap, for editors and GIS; exact in
     /// crispEdges, but anti-aliased renderers show faint hairlines along shared borders).
     #[arg(long, value_name = "stack|partition", default_value = "stack",
-          value_parser = ["stack", "partition"],
-          requires = "colors")]
-    pub layout: String,
+          value_parser = parse_layout, requires = "colors")]
+    pub layout: Layout,
 
     /// The alpha channel is the shape (alpha at least 128), whatever its colour: for
     /// one-colour icons on transparency, such as a white logo.
@@ -213,15 +212,12 @@ pub struct Args {
     pub quiet: bool,
 }
 
+fn parse_layout(s: &str) -> Result<Layout, String> {
+    s.parse().map_err(|e: ParseLayoutError| e.to_string())
+}
+
 pub(super) fn parse_model(s: &str) -> Result<Model, String> {
-    const IMAGE_MODELS: &str = "line, circle, conic or poly:D (D = 1..=6)";
-    match s.parse::<Model>() {
-        Ok(Model::Quadric3 | Model::Poly3(_)) => Err(format!(
-            "'{s}' is a model of 3-D point sets (layertrace recognize); images take {IMAGE_MODELS}"
-        )),
-        Ok(m) => Ok(m),
-        Err(_) => Err(format!("unknown model '{s}': expected {IMAGE_MODELS}")),
-    }
+    Model::parse_image_model(s).map_err(|e| e.to_string())
 }
 
 /// A finite number in `lo..=hi`.

@@ -118,10 +118,7 @@ pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPoo
     o.threshold = args.threshold;
     o.smooth = args.smooth;
     o.colors = args.colors;
-    o.layout = match args.layout.as_str() {
-        "partition" => layertrace::Layout::Partition,
-        _ => layertrace::Layout::Stack,
-    };
+    o.layout = args.layout;
     o.alpha = args.alpha;
     o.svg = (outputs.svg.is_some() || args.report || outputs.diff.is_some()).then(|| SvgOptions {
         fill: args.fill.clone(),

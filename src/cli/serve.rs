@@ -11,8 +11,8 @@
 
 use clap::Parser;
 use layertrace::{
-    colour_diff_image, diff_image, png_bytes, vectorize, Cover, Error, Layout, Options, Vectorized,
-    MAX_BAND,
+    colour_diff_image, diff_image, png_bytes, vectorize, Cover, Error, Layout, Options,
+    ParseLayoutError, Vectorized, MAX_BAND,
 };
 use std::io::Read;
 use std::net::{IpAddr, SocketAddr};
@@ -290,13 +290,8 @@ fn options(query: &str, state: &State) -> Result<(Options, String), String> {
             "alpha" => options = options.alpha(matches!(value.as_str(), "1" | "true" | "on")),
             "layout" => {
                 options = options.layout(match value.as_str() {
-                    "" | "stack" => Layout::Stack,
-                    "partition" => Layout::Partition,
-                    other => {
-                        return Err(format!(
-                            "unknown layout '{other}': expected stack or partition"
-                        ))
-                    }
+                    "" => Layout::Stack,
+                    other => other.parse().map_err(|e: ParseLayoutError| e.to_string())?,
                 })
             }
             "name" => {

@@ -7,7 +7,7 @@ mod partition;
 mod partition_run;
 
 pub use colour::{ColourLayer, ColourVectorized};
-pub use options::{Layout, Options, Progress, ProgressFn, Stage};
+pub use options::{Layout, Options, ParseLayoutError, Progress, ProgressFn, Stage};
 
 use std::path::{Path, PathBuf};
 

@@ -57,6 +57,40 @@ impl Layout {
     }
 }
 
+/// The error of parsing a [`Layout`] name.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParseLayoutError(String);
+
+impl std::fmt::Display for ParseLayoutError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "unknown layout '{}': expected stack or partition",
+            self.0
+        )
+    }
+}
+
+impl std::error::Error for ParseLayoutError {}
+
+impl std::str::FromStr for Layout {
+    type Err = ParseLayoutError;
+
+    /// `stack` or `partition`, as [`Layout::name`] writes them.
+    ///
+    /// ```
+    /// use layertrace::Layout;
+    /// assert_eq!("partition".parse::<Layout>(), Ok(Layout::Partition));
+    /// assert!("side-by-side".parse::<Layout>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Layout, ParseLayoutError> {
+        [Layout::Stack, Layout::Partition]
+            .into_iter()
+            .find(|l| l.name() == s)
+            .ok_or_else(|| ParseLayoutError(s.to_string()))
+    }
+}
+
 /// A callback told of progress, from any worker thread: once per chunk of 256 contours while
 /// decomposing, once per group of 4 096 while drawing. Calls from different threads may
 /// arrive out of order.
