@@ -97,17 +97,8 @@ fn measure(image: &ColourImage, svg: &str) -> (u64, u64) {
                     if c.alpha() != 255 || nearest != k {
                         differing += 1;
                     }
-                    let inside = (-2..=2).all(|dy| {
-                        (-2..=2).all(|dx| {
-                            let (u, v) = (xi + dx, yi + dy);
-                            u < 0
-                                || v < 0
-                                || u >= i64::from(w)
-                                || v >= i64::from(h)
-                                || image.get(u, v).is_some()
-                        })
-                    });
-                    if inside && smooth.pixels()[i].alpha() < 255 {
+                    // The seam test of `colour_fidelity`: see-through with regions all round.
+                    if smooth.pixels()[i].alpha() < 255 && image.regions_around(xi, yi, 2) {
                         seams += 1;
                     }
                 }

@@ -22,6 +22,9 @@
 use crate::bitmap::{distance_where, Colour, ColourImage};
 use crate::error::Error;
 
+/// The seam test looks this far round a pixel (the 5 × 5 neighbourhood above).
+const SEAM_RADIUS: i64 = 2;
+
 /// The pixels of one colour that differ.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ColourDiff {
@@ -110,17 +113,7 @@ pub fn colour_fidelity(
                         d.differing += 1;
                         off(xi, yi);
                     }
-                    let inside = (-2..=2).all(|dy| {
-                        (-2..=2).all(|dx| {
-                            let (u, v) = (xi + dx, yi + dy);
-                            u < 0
-                                || v < 0
-                                || u >= i64::from(w)
-                                || v >= i64::from(h)
-                                || expected.get(u, v).is_some()
-                        })
-                    });
-                    if inside && smooth_px[i].alpha() < 255 {
+                    if smooth_px[i].alpha() < 255 && expected.regions_around(xi, yi, SEAM_RADIUS) {
                         seams += 1;
                     }
                 }

@@ -142,6 +142,20 @@ impl ColourImage {
         }
     }
 
+    /// True when every pixel within `radius` of `(x, y)` (a square of side `2 radius + 1`)
+    /// belongs to some region or lies outside the image: no pixel of no region is near.
+    /// Where this holds, an anti-aliased drawing of the regions must be opaque, so a
+    /// see-through pixel there is a seam.
+    pub fn regions_around(&self, x: i64, y: i64, radius: i64) -> bool {
+        let (w, h) = (i64::from(self.width), i64::from(self.height));
+        (-radius..=radius).all(|dy| {
+            (-radius..=radius).all(|dx| {
+                let (u, v) = (x + dx, y + dy);
+                u < 0 || v < 0 || u >= w || v >= h || self.get(u, v).is_some()
+            })
+        })
+    }
+
     /// The colour of pixel `(x, y)`, if it has one.
     pub fn colour(&self, x: i64, y: i64) -> Option<Colour> {
         self.get(x, y).map(|k| self.palette[k])
