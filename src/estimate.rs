@@ -75,6 +75,15 @@ pub struct WorkEstimate {
 /// and checking its fidelity on a `width × height` image will need, with `threads` worker
 /// threads (see the module documentation for the model). Linear in the number of points and
 /// contours, so it is computed in one pass before anything is allocated.
+///
+/// ```
+/// use layertrace::{trace, work_estimate, Convention, Mask, Model};
+/// let mask = Mask::from_fn(200, 200, |x, y| (x / 10 + y / 10) % 2 == 0);
+/// let contours = trace(&mask, Convention::Default);
+/// let e = work_estimate(&contours, Model::Conic, 200, 200, 1);
+/// assert!(e.contours > 0 && e.decomposition > 0);
+/// assert!(e.bytes >= e.contours + e.decomposition + e.svg_document);
+/// ```
 pub fn work_estimate(
     contours: &[Contour],
     model: Model,

@@ -73,6 +73,22 @@ pub struct BandCheck {
 /// Checks the guarantee of a smooth outline: every pixel where `rendered` differs from
 /// `expected` lies within `nu` of `expected`'s border (the distance from its centre to the
 /// nearest pixel square of the other colour, see [`crate::bitmap::Band`]).
+///
+/// ```
+/// use layertrace::{band_check, Mask};
+/// let expected = Mask::from_ascii(
+///     "......
+///      .####.
+///      .####.
+///      ......",
+/// );
+/// // One corner pixel lost: it lies on the border, within half a pixel of the background.
+/// let mut rendered = expected.clone();
+/// rendered.set(1, 1, false);
+/// let b = band_check(&expected, &rendered, 1.0);
+/// assert_eq!((b.differing, b.beyond), (1, 0));
+/// assert!(b.max_distance <= 1.0);
+/// ```
 pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
     let mut out = BandCheck {
         nu,
@@ -130,6 +146,15 @@ fn render_with(
 ///
 /// Fails with [`Error::SvgParse`] when usvg rejects the document and with
 /// [`Error::Raster`] when no pixmap of that size can be made (zero or huge size).
+///
+/// ```
+/// use layertrace::rasterize_svg;
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="4" height="3" viewBox="0 0 4 3">
+///   <path d="M1 0H3V2H1Z"/></svg>"#;
+/// let mask = rasterize_svg(svg, 4, 3)?;
+/// assert!(mask.get(1, 0) && mask.get(2, 1) && !mask.get(0, 0) && !mask.get(1, 2));
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn rasterize_svg(svg: &str, width: u32, height: u32) -> Result<Mask, Error> {
     let pixmap = render(svg, width, height)?;
     let mut mask = Mask::new(width, height);
@@ -145,6 +170,14 @@ pub fn rasterize_svg(svg: &str, width: u32, height: u32) -> Result<Mask, Error> 
 
 /// Compares two masks pixel by pixel over the larger of their sizes (outside a mask is
 /// background).
+///
+/// ```
+/// use layertrace::{compare, Mask};
+/// let expected = Mask::from_ascii("##.\n##.");
+/// let actual = Mask::from_ascii("#..\n###");
+/// let r = compare(&expected, &actual);
+/// assert_eq!((r.missing, r.extra, r.differing, r.foreground), (1, 1, 2, 4));
+/// ```
 pub fn compare(expected: &Mask, actual: &Mask) -> FidelityReport {
     let w = expected.width().max(actual.width());
     let h = expected.height().max(actual.height());
@@ -174,6 +207,17 @@ pub fn compare(expected: &Mask, actual: &Mask) -> FidelityReport {
 }
 
 /// Rasterizes `svg` at the size of `mask` and compares.
+///
+/// ```
+/// use layertrace::{decompose, fidelity, svg_document, trace, Convention, Mask, Model};
+/// use layertrace::{OutlierRule, SvgOptions};
+/// let mask = Mask::from_fn(30, 20, |x, y| (x + y) % 17 < 9 && y > 2);
+/// let d = decompose(trace(&mask, Convention::Default), Model::Conic, OutlierRule::NotInPiece);
+/// let out = svg_document(&d, 30, 20, &SvgOptions::default());
+/// // Exact as resvg draws it.
+/// assert_eq!(fidelity(&out.svg, &mask)?.differing, 0);
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn fidelity(svg: &str, mask: &Mask) -> Result<FidelityReport, Error> {
     let actual = rasterize_svg(svg, mask.width(), mask.height())?;
     Ok(compare(mask, &actual))
@@ -181,6 +225,15 @@ pub fn fidelity(svg: &str, mask: &Mask) -> Result<FidelityReport, Error> {
 
 /// A picture of the comparison, over the larger of the two sizes: agreeing pixels black
 /// (foreground) or white, missing pixels (expected only) red, extra pixels (actual only) blue.
+///
+/// ```
+/// use layertrace::{diff_image, Mask};
+/// let expected = Mask::from_ascii("#.");
+/// let actual = Mask::from_ascii(".#");
+/// let img = diff_image(&expected, &actual);
+/// assert_eq!(img.get_pixel(0, 0).0, [255, 0, 0]); // missing: red
+/// assert_eq!(img.get_pixel(1, 0).0, [0, 0, 255]); // extra: blue
+/// ```
 pub fn diff_image(expected: &Mask, actual: &Mask) -> image::RgbImage {
     let w = expected.width().max(actual.width());
     let h = expected.height().max(actual.height());

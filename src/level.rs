@@ -24,6 +24,25 @@ use kurbo::Point;
 /// The level `c` of the border curve: the middle of the gap between the layer and its RIGHT
 /// outliers, `(upper + above) / 2`. Without RIGHT outliers, half the layer's width (at least
 /// one half) above `upper`.
+///
+/// ```
+/// use layertrace::{boundary_level, decompose, trace, Convention, Mask, Model, OutlierRule};
+/// let mask = Mask::from_ascii(
+///     "........
+///      .######.
+///      .######.
+///      ........",
+/// );
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// for piece in &d.pieces[0] {
+///     let c = &piece.certificate;
+///     let level = boundary_level(c);
+///     // Between the layer and the outliers on its right, when there are some.
+///     if let Some(above) = c.extremes.above {
+///         assert!(c.extremes.upper as f64 <= level && level <= above as f64);
+///     }
+/// }
+/// ```
 pub fn boundary_level(c: &Certificate) -> f64 {
     match c.extremes.above {
         Some(above) => (c.extremes.upper as f64 + above as f64) / 2.0,
@@ -38,6 +57,27 @@ pub fn boundary_level(c: &Certificate) -> f64 {
 ///
 /// Returns `None` if the basis is not polynomial in two variables, its degree exceeds
 /// [`MAX_DEGREE`], or every coefficient is zero.
+///
+/// ```
+/// use kurbo::Point;
+/// use layertrace::{decompose, level_polynomial, trace, Convention, Mask, Model, OutlierRule};
+/// let mask = Mask::from_ascii(
+///     "..........
+///      .########.
+///      .########.
+///      ..........",
+/// );
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let basis = Model::Line.basis();
+/// let piece = &d.pieces[0][0];
+/// let c = &piece.certificate;
+/// let f = level_polynomial(&basis, c, c.extremes.lower as f64).unwrap();
+/// // Every pixel centre of the piece lies on the positive side of `f − lower`, or on it.
+/// for p in &d.contours[0].points[piece.first..=piece.last] {
+///     let centre = Point::new(f64::from(p.x) + 0.5, f64::from(p.y) + 0.5);
+///     assert!(f.eval(centre) >= -1e-9);
+/// }
+/// ```
 pub fn level_polynomial(basis: &dyn Basis, c: &Certificate, level: f64) -> Option<Polynomial> {
     let a: Vec<f64> = c.coefficients.iter().map(|&v| v as f64).collect();
     polynomial_of(basis, &c.origin, &a, level)
@@ -118,6 +158,14 @@ pub fn border_polynomial(
 }
 
 /// The type of the level curve `poly = 0`.
+///
+/// ```
+/// use layertrace::{curve_kind, CurveKind, Polynomial};
+/// // x² + y² − 4 = 0: a circle.
+/// let circle = Polynomial::new(&[(2, 0, 1.0), (0, 2, 1.0), (0, 0, -4.0)]).unwrap();
+/// assert_eq!(curve_kind(Some(&circle)), CurveKind::Circle);
+/// assert_eq!(curve_kind(None), CurveKind::Degenerate);
+/// ```
 pub fn curve_kind(poly: Option<&Polynomial>) -> CurveKind {
     let Some(poly) = poly else {
         return CurveKind::Degenerate;
@@ -130,6 +178,20 @@ pub fn curve_kind(poly: Option<&Polynomial>) -> CurveKind {
 }
 
 /// The kind of a piece's border curve (at [`boundary_level`]).
+///
+/// ```
+/// use layertrace::{decompose, piece_kind, trace, Convention, CurveKind, Mask, Model, OutlierRule};
+/// let mask = Mask::from_fn(40, 40, |x, y| {
+///     let (dx, dy) = (f64::from(x) - 19.5, f64::from(y) - 19.5);
+///     dx.hypot(dy) < 15.0
+/// });
+/// let d = decompose(trace(&mask, Convention::Default), Model::Circle, OutlierRule::NotInPiece);
+/// let basis = Model::Circle.basis();
+/// // A digital disc: its border pieces are circular arcs (or lines, where flat).
+/// assert!(d.pieces[0]
+///     .iter()
+///     .all(|p| matches!(piece_kind(&basis, &p.certificate), CurveKind::Circle | CurveKind::Line)));
+/// ```
 pub fn piece_kind(basis: &dyn Basis, c: &Certificate) -> CurveKind {
     curve_kind(level_polynomial(basis, c, boundary_level(c)).as_ref())
 }

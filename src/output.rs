@@ -41,6 +41,14 @@ fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
 /// Removes every temporary file of every [`OutputSet`] of the process and exits with `code`,
 /// without returning: for signal handlers (SIGINT, SIGTERM). No output set can create or
 /// rename a temporary file once this has started.
+///
+/// ```
+/// // In a signal handler (here with the signal-hook crate), after the outputs are set up:
+/// // signal_hook::low_level::register(signal_hook::consts::SIGINT, || {
+/// //     layertrace::exit_removing_temporaries(130)
+/// // });
+/// let _: fn(i32) -> ! = layertrace::exit_removing_temporaries;
+/// ```
 pub fn exit_removing_temporaries(code: i32) -> ! {
     let list = pending();
     for path in list.iter() {
@@ -344,6 +352,15 @@ impl OutputSet {
 
 /// Writes `bytes` to `path` whole or not at all: an [`OutputSet`] of one output (see the
 /// module docs for what happens with links, devices and existing files).
+///
+/// ```
+/// use layertrace::write_atomic;
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("out.svg");
+/// write_atomic(&path, b"<svg/>")?;
+/// assert_eq!(std::fs::read(&path).unwrap(), b"<svg/>");
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     let mut set = OutputSet::new(None);
     let id = set.add(path)?;
@@ -454,6 +471,13 @@ fn resolve(path: &Path) -> std::io::Result<(PathBuf, bool)> {
 }
 
 /// Encodes a picture as PNG in memory.
+///
+/// ```
+/// use layertrace::png_bytes;
+/// let img = image::RgbImage::from_pixel(3, 2, image::Rgb([255, 0, 0]));
+/// let bytes = png_bytes(&img).unwrap();
+/// assert_eq!(&bytes[1..4], b"PNG");
+/// ```
 pub fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>, image::ImageError> {
     let mut buf = std::io::Cursor::new(Vec::new());
     img.write_to(&mut buf, image::ImageFormat::Png)?;

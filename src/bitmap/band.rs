@@ -138,6 +138,16 @@ impl Band {
 /// The distance of pixel `(x, y)` of `mask` to its border (see the module documentation),
 /// searched up to `limit` pixels. Returns `None` when no pixel of the other colour is within
 /// `limit` (or the pixel is outside the image).
+///
+/// ```
+/// use layertrace::{border_distance, Mask};
+/// let mask = Mask::from_ascii(".......\n.#####.\n.#####.\n.#####.\n.......");
+/// // Beside the background: half a pixel; two steps in: one and a half.
+/// assert_eq!(border_distance(&mask, 1, 2, 4.0), Some(0.5));
+/// assert_eq!(border_distance(&mask, 3, 2, 4.0), Some(1.5));
+/// // Nothing of the other colour within the limit.
+/// assert_eq!(border_distance(&mask, 3, 2, 1.0), None);
+/// ```
 pub fn border_distance(mask: &Mask, x: i64, y: i64, limit: f64) -> Option<f64> {
     let v = mask.get(x, y);
     distance_where(mask.width(), mask.height(), x, y, limit, |u, w| {

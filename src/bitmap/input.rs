@@ -132,6 +132,13 @@ fn read_bounded(mut r: impl Read, bound: u64, name: &Path) -> Result<Vec<u8>, Er
 /// (`ulimit -v`, `ulimit -d`) still leave. 4 GiB where none of these can be read.
 ///
 /// Computed once per process.
+///
+/// ```
+/// use layertrace::{default_max_memory, LoadOptions};
+/// let limit = default_max_memory();
+/// assert!(limit > 0);
+/// assert_eq!(LoadOptions::default().max_memory, limit);
+/// ```
 pub fn default_max_memory() -> u64 {
     static DEFAULT: OnceLock<u64> = OnceLock::new();
     *DEFAULT.get_or_init(|| {

@@ -79,6 +79,17 @@ pub struct Loaded {
 /// [`Error::NoData`] at once. Errors (unreadable file, unknown, corrupt or truncated data,
 /// zero size, more than `opts.max_pixels` pixels, more memory than `opts.max_memory`) are
 /// returned, never panicked, and name standard input `<stdin>`.
+///
+/// ```
+/// use layertrace::{load_path, LoadOptions};
+/// use std::path::Path;
+/// let loaded = load_path(Path::new("samples/glyph_g_liberationserif_cap120.png"), &LoadOptions::default())?;
+/// assert!(loaded.mask.count_foreground() > 0);
+/// // A missing file is a clear error naming it.
+/// let e = load_path(Path::new("no/such.png"), &LoadOptions::default()).unwrap_err();
+/// assert!(e.to_string().contains("no/such.png"));
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn load_path(path: &Path, opts: &LoadOptions) -> Result<Loaded, Error> {
     let name = display_name(path);
     match open(path, &name, opts.max_pixels, opts.max_memory)? {
@@ -88,6 +99,15 @@ pub fn load_path(path: &Path, opts: &LoadOptions) -> Result<Loaded, Error> {
 }
 
 /// Decodes and thresholds an encoded image held in memory (errors name the file `<memory>`).
+///
+/// ```
+/// use layertrace::{load_memory, LoadOptions, Threshold};
+/// let bytes = std::fs::read("samples/glyph_g_liberationserif_cap120.png").unwrap();
+/// let opts = LoadOptions { threshold: Threshold::Otsu, ..LoadOptions::default() };
+/// let loaded = load_memory(&bytes, &opts)?;
+/// assert!(loaded.mask.width() > 0 && loaded.threshold > 0);
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn load_memory(bytes: &[u8], opts: &LoadOptions) -> Result<Loaded, Error> {
     load_bytes(bytes, Path::new("<memory>"), opts)
 }
@@ -369,6 +389,15 @@ fn threshold_grey(grey: &[u8], opts: &LoadOptions, mask: &mut Mask) -> u8 {
 
 /// Thresholds a decoded image into a [`Loaded`] mask according to `opts`, and cleans it
 /// (`opts.max_pixels` and `opts.max_memory` are not checked here).
+///
+/// ```
+/// use layertrace::{threshold_image, LoadOptions, Threshold};
+/// let grey = image::GrayImage::from_fn(4, 1, |x, _| image::Luma([(x * 80) as u8]));
+/// let opts = LoadOptions { threshold: Threshold::Fixed(100), ..LoadOptions::default() };
+/// let loaded = threshold_image(&image::DynamicImage::ImageLuma8(grey), &opts);
+/// // Foreground is darker than the threshold: luma 0 and 80.
+/// assert!(loaded.mask.get(0, 0) && loaded.mask.get(1, 0) && !loaded.mask.get(2, 0));
+/// ```
 pub fn threshold_image(img: &DynamicImage, opts: &LoadOptions) -> Loaded {
     let (width, height) = (img.width(), img.height());
     let grey = match opts.compat {

@@ -78,6 +78,21 @@ pub enum Convention {
 ///
 /// Pixel coordinates are `i32`: a mask wider or taller than `i32::MAX - 2` pixels gives no
 /// contours (the loader's pixel limit keeps images far below that).
+///
+/// ```
+/// use layertrace::{trace, Convention, Mask};
+/// let mask = Mask::from_ascii(
+///     ".....
+///      .###.
+///      .#.#.
+///      .###.
+///      .....",
+/// );
+/// let contours = trace(&mask, Convention::Default);
+/// // The ring's outer border and its hole's border.
+/// assert_eq!(contours.len(), 2);
+/// assert_eq!(contours.iter().filter(|c| c.hole).count(), 1);
+/// ```
 pub fn trace(mask: &Mask, convention: Convention) -> Vec<Contour> {
     let limit = (i32::MAX - 2) as u32;
     if mask.width() > limit || mask.height() > limit {

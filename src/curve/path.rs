@@ -43,6 +43,19 @@ pub(super) const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
 /// parabolas) lies farther than 2 px from the arc, points on different
 /// hyperbola branches, a trace that does not reach `to`, or a trace step that no cubic
 /// follows within `tolerance` (it jumps the gap between two branches by a saddle).
+///
+/// ```
+/// use kurbo::Point;
+/// use layertrace::{level_curve_path, PathCommand, Polynomial};
+/// // The circle x² + y² = 25, from (5, 0) to (0, 5) the short way (the guide point says which).
+/// let circle = Polynomial::new(&[(2, 0, 1.0), (0, 2, 1.0), (0, 0, -25.0)]).unwrap();
+/// let guide = [Point::new(3.5355, 3.5355)];
+/// let (commands, error) =
+///     level_curve_path(&circle, Point::new(5.0, 0.0), Point::new(0.0, 5.0), &guide, 0.01).unwrap();
+/// // An exact elliptical arc: no fitting error.
+/// assert!(matches!(commands[..], [PathCommand::Arc(_)]));
+/// assert_eq!(error, 0.0);
+/// ```
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(d <= max)` also rejects NaN distances.
 pub fn level_curve_path(
     poly: &Polynomial,

@@ -196,6 +196,16 @@ pub struct Outliers {
 
 /// The RIGHT and LEFT outliers of the piece `points[first..=last]` under `rule` (none when
 /// the piece has no interior point or `last` is out of range).
+///
+/// ```
+/// use layertrace::{piece_outliers, OutlierRule, Outliers, Pixel};
+/// // A horizontal run of 5 pixels, traced left to right.
+/// let run: Vec<Pixel> = (0..5).map(|x| Pixel::new(x, 0)).collect();
+/// let Outliers { right, left } = piece_outliers(&run, 0, 4, OutlierRule::NotInPiece);
+/// // The 4-neighbours of its interior pixels, below (y = 1) on the right, above on the left.
+/// assert!(right.iter().all(|p| p.y == 1) && left.iter().all(|p| p.y == -1));
+/// assert_eq!((right.len(), left.len()), (3, 3));
+/// ```
 pub fn piece_outliers(points: &[Pixel], first: usize, last: usize, rule: OutlierRule) -> Outliers {
     let mut right = Vec::new();
     let mut left = Vec::new();
@@ -229,6 +239,20 @@ fn xy(p: Pixel) -> [i64; 2] {
 
 /// Decomposes one contour greedily with the given recognizer (reset for every piece), within
 /// the default [`WorkBudget`].
+///
+/// ```
+/// use layertrace::{decompose_points, Model, OutlierRule, Pixel, Recognizer};
+/// use std::sync::Arc;
+/// // An open chain: a 20-pixel row, then a 20-pixel column.
+/// let points: Vec<Pixel> = (0..20)
+///     .map(|x| Pixel::new(x, 0))
+///     .chain((1..20).map(|y| Pixel::new(19, y)))
+///     .collect();
+/// let mut rec = Recognizer::new(Arc::new(Model::Line.basis()), &[0, 0]).unwrap();
+/// let pieces = decompose_points(&points, &mut rec, OutlierRule::NotInPiece);
+/// assert!(pieces.len() >= 2);
+/// assert_eq!((pieces[0].first, pieces.last().unwrap().last), (0, points.len() - 1));
+/// ```
 pub fn decompose_points(points: &[Pixel], rec: &mut Recognizer, rule: OutlierRule) -> Vec<Piece> {
     decompose_points_within(points, rec, rule, WorkBudget::default())
 }
@@ -267,11 +291,37 @@ const CONTOURS_PER_TASK: usize = 256;
 
 /// Decomposes every contour with `model`, contours in parallel (rayon), within the default
 /// [`WorkBudget`]; the result does not depend on the number of threads.
+///
+/// ```
+/// use layertrace::{decompose, trace, Convention, Mask, Model, OutlierRule};
+/// let mask = Mask::from_ascii(
+///     "..........
+///      .########.
+///      .########.
+///      .########.
+///      ..........",
+/// );
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// assert_eq!(d.contours.len(), 1);
+/// // A rectangle's border: a few straight pieces (one may turn a corner: a digital line
+/// // can), covering the contour in order, each with an exact certificate.
+/// let pieces = &d.pieces[0];
+/// assert!((2..=4).contains(&pieces.len()));
+/// assert!(pieces.windows(2).all(|w| w[1].first == w[0].last + 1));
+/// ```
 pub fn decompose(contours: Vec<Contour>, model: Model, rule: OutlierRule) -> Decomposition {
     decompose_within(contours, model, rule, WorkBudget::default())
 }
 
 /// [`decompose`] with the given work budget per piece.
+///
+/// ```
+/// use layertrace::{decompose_within, trace, Convention, Mask, Model, OutlierRule, WorkBudget};
+/// let mask = Mask::from_fn(40, 40, |x, y| (x as i32 - 20).pow(2) + (y as i32 - 20).pow(2) < 250);
+/// let contours = trace(&mask, Convention::Default);
+/// let d = decompose_within(contours, Model::Conic, OutlierRule::NotInPiece, WorkBudget::default());
+/// assert!(d.piece_count() >= 1);
+/// ```
 pub fn decompose_within(
     contours: Vec<Contour>,
     model: Model,
@@ -284,6 +334,18 @@ pub fn decompose_within(
 /// [`decompose_within`] with the given cover. With [`Cover::Optimal`] a closed contour may
 /// come back rotated (the same cycle of points, started where the shortest path round the
 /// cycle cuts it).
+///
+/// ```
+/// use layertrace::{decompose_cover, trace, Convention, Cover, Mask, Model, OutlierRule};
+/// use layertrace::WorkBudget;
+/// let mask = Mask::from_fn(40, 30, |x, y| (x as i32 - 20).pow(2) * 2 + (y as i32 - 15).pow(2) * 3 < 600);
+/// let cover = |c| {
+///     let contours = trace(&mask, Convention::Default);
+///     decompose_cover(contours, Model::Line, OutlierRule::NotInPiece, WorkBudget::default(), c)
+/// };
+/// // The optimal cover never has more pieces than the paper's greedy one.
+/// assert!(cover(Cover::Optimal).piece_count() <= cover(Cover::Greedy).piece_count());
+/// ```
 pub fn decompose_cover(
     contours: Vec<Contour>,
     model: Model,

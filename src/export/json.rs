@@ -49,6 +49,21 @@ pub(crate) fn quote(s: &str) -> String {
 }
 
 /// The JSON text of a decomposition (one contour per line, compact otherwise).
+///
+/// ```
+/// use layertrace::{decompose, decomposition_json, trace, Convention, JsonHeader, Mask, Model};
+/// use layertrace::OutlierRule;
+/// let mask = Mask::from_ascii("......\n.####.\n.####.\n......");
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let header = JsonHeader { width: 6, height: 4, threshold: 128, invert: false };
+/// let text = decomposition_json(&d, &header);
+/// let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+/// assert_eq!(v["model"], "line");
+/// let pieces = v["contours"][0]["pieces"].as_array().unwrap();
+/// assert_eq!(pieces.len(), d.pieces[0].len());
+/// // Each piece's equation: one integer coefficient per basis function (x, y, 1).
+/// assert!(pieces.iter().all(|p| p["coefficients"].as_array().unwrap().len() == 3));
+/// ```
 pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
     let basis = d.model.basis();
     let basis_ref: &dyn crate::model::Basis = &basis;

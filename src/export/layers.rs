@@ -32,6 +32,23 @@ pub struct SvgLayer<'a> {
 /// layers' contours are in the coordinates of the image padded by `margin` pixels on every
 /// side (image pixel `(x, y)` is `(x + margin, y + margin)`), and are written moved back
 /// into the image's. The output's counts are those of all layers.
+///
+/// ```
+/// use layertrace::{decompose, layers_document, trace, Convention, Mask, Model, OutlierRule};
+/// use layertrace::{SvgLayer, SvgOptions};
+/// // Two layers of a 6 × 4 image, traced on masks padded by one pixel.
+/// let wide = Mask::from_ascii("........\n.######.\n.######.\n.######.\n.######.\n........");
+/// let small = Mask::from_ascii("........\n........\n...##...\n...##...\n........\n........");
+/// let dw = decompose(trace(&wide, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let ds = decompose(trace(&small, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let layers = [
+///     SvgLayer { fill: "#1f4e9c", decomposition: &dw, band: None },
+///     SvgLayer { fill: "#f2c318", decomposition: &ds, band: None },
+/// ];
+/// let out = layers_document(&layers, 6, 4, 1, &SvgOptions::default());
+/// assert_eq!(out.svg.matches("<path").count(), 2);
+/// assert!(out.svg.find("#1f4e9c") < out.svg.find("#f2c318"));
+/// ```
 pub fn layers_document(
     layers: &[SvgLayer<'_>],
     width: u32,

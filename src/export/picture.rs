@@ -21,6 +21,16 @@ pub(crate) fn default_scale(width: u32, height: u32) -> u32 {
 }
 
 /// Draws the picture. Returns `None` if the enlarged image would exceed `max_pixels`.
+///
+/// ```
+/// use layertrace::{decompose, decomposition_picture, trace, Convention, Mask, Model, OutlierRule};
+/// let mask = Mask::from_ascii("......\n.####.\n.####.\n......");
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let pic = decomposition_picture(&mask, &d, 8, 1 << 20).unwrap();
+/// assert_eq!(pic.dimensions(), (6 * 8, 4 * 8));
+/// // Too large for the pixel limit: no picture.
+/// assert!(decomposition_picture(&mask, &d, 8, 100).is_none());
+/// ```
 pub fn decomposition_picture(
     mask: &Mask,
     d: &Decomposition,

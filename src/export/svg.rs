@@ -248,6 +248,17 @@ pub(crate) fn xml_escape(v: &str) -> String {
 /// The SVG document of a decomposition of a `width` × `height` image: one `<path>` with
 /// `fill-rule="nonzero"`, outer borders counter-clockwise, holes clockwise, width, height
 /// and viewBox the image size in pixels.
+///
+/// ```
+/// use layertrace::{decompose, svg_document, trace, Convention, Mask, Model, OutlierRule};
+/// use layertrace::SvgOptions;
+/// let mask = Mask::from_ascii("......\n.####.\n.#..#.\n.####.\n......");
+/// let d = decompose(trace(&mask, Convention::Default), Model::Line, OutlierRule::NotInPiece);
+/// let out = svg_document(&d, 6, 5, &SvgOptions::default());
+/// assert!(out.svg.starts_with("<svg") || out.svg.starts_with("<?xml"));
+/// // One outer border and one hole: two closed subpaths.
+/// assert_eq!((out.commands.move_to, out.commands.close), (2, 2));
+/// ```
 pub fn svg_document(d: &Decomposition, width: u32, height: u32, opts: &SvgOptions) -> SvgOutput {
     svg_document_reporting(d, width, height, opts, None, &|_| {})
 }

@@ -62,6 +62,16 @@ pub struct ColourFidelity {
 /// With `band_nu` = Some(ν) (smooth outlines), also checks the guarantee of smooth outlines: every differing
 /// pixel is within ν of a pixel of another colour or of no region (the distance from its
 /// centre to that pixel's square).
+///
+/// ```
+/// use layertrace::{colour_fidelity, vectorize, Options, Source};
+/// let bytes = std::fs::read("samples/colour/colour_logo_crisp.png").unwrap();
+/// let v = vectorize(Source::Bytes(&bytes), &Options::default().colors(4))?;
+/// let c = v.colour.as_ref().unwrap();
+/// let f = colour_fidelity(&v.svg.as_ref().unwrap().svg, &c.regions.image, None)?;
+/// assert_eq!(f.differing, 0);
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn colour_fidelity(
     svg: &str,
     expected: &ColourImage,
@@ -150,6 +160,19 @@ fn colour_border_distance(expected: &ColourImage, x: i64, y: i64, limit: f64) ->
 
 /// A picture of the comparison: the regions in their colours, faded halfway to white,
 /// pixels of no region white, differing region pixels red, painted pixels of no region blue.
+///
+/// ```
+/// use layertrace::{colour_diff_image, colour_regions};
+/// let img = image::RgbaImage::from_fn(4, 2, |x, _| {
+///     if x < 2 { image::Rgba([250, 0, 0, 255]) } else { image::Rgba([0, 0, 250, 255]) }
+/// });
+/// let regions = colour_regions(&img, 2);
+/// // A rendering that paints everything red: the blue region's pixels show as differing.
+/// let rendered = image::RgbaImage::from_pixel(4, 2, image::Rgba([250, 0, 0, 255]));
+/// let pic = colour_diff_image(&regions.image, &rendered);
+/// assert_eq!(pic.get_pixel(3, 0).0, [255, 0, 0]);
+/// assert_ne!(pic.get_pixel(0, 0).0, [255, 0, 0]);
+/// ```
 pub fn colour_diff_image(expected: &ColourImage, rendered: &image::RgbaImage) -> image::RgbImage {
     image::RgbImage::from_fn(expected.width(), expected.height(), |x, y| {
         let r = rendered.get_pixel(x, y);

@@ -152,6 +152,16 @@ pub(crate) fn path_staircases(d: &str) -> StaircaseCount {
 /// Staircases in every `d` attribute of an SVG document, summed.
 ///
 /// Fails with [`Error::SvgParse`] when the document is not well-formed XML.
+///
+/// ```
+/// use layertrace::staircases;
+/// // Four unit steps alternating right and down: one run of 4 staircase segments.
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0h1v1h1v1h1v1L0 3Z"/></svg>"#;
+/// let s = staircases(svg)?;
+/// assert_eq!(s.runs, 1);
+/// assert!(s.segments >= 4);
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn staircases(svg: &str) -> Result<StaircaseCount, Error> {
     let doc = roxmltree::Document::parse(svg).map_err(|e| Error::SvgParse {
         source: usvg::Error::ParsingFailed(e),

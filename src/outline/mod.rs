@@ -114,6 +114,26 @@ fn cracks_path(points: &[crate::pixel::Pixel]) -> ContourPath {
 
 /// The closed path of one contour decomposed into `pieces` described in `basis`, exact in
 /// tiny-skia (see the module documentation).
+///
+/// ```
+/// use layertrace::{contour_path, decompose, trace, Convention, Mask, Model, OutlierRule};
+/// use layertrace::OutlineOptions;
+/// let mask = Mask::from_ascii(
+///     "........
+///      ..####..
+///      .######.
+///      .######.
+///      ..####..
+///      ........",
+/// );
+/// let d = decompose(trace(&mask, Convention::Default), Model::Conic, OutlierRule::NotInPiece);
+/// let basis = Model::Conic.basis();
+/// let path = contour_path(&d.contours[0], &d.pieces[0], &basis, &OutlineOptions::default());
+/// assert!(!path.commands.is_empty());
+/// // Every point is on the grid of 2^-grid pixels.
+/// let grid = f64::from(1u32 << OutlineOptions::default().grid);
+/// assert_eq!((path.start.x * grid).fract(), 0.0);
+/// ```
 pub fn contour_path(
     contour: &Contour,
     pieces: &[Piece],

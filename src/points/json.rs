@@ -57,6 +57,14 @@ pub fn read_point_sets(path: &Path) -> Result<PointSets, Error> {
 
 /// Parses the bytes of a point file (see [`read_point_sets`]); errors name the file
 /// `<memory>`.
+///
+/// ```
+/// use layertrace::point_sets_from_json;
+/// let sets = point_sets_from_json(br#"{"inliers": [[0, 0], [1, 1]], "above": [[0, 1]]}"#)?;
+/// assert_eq!((sets.inliers.len(), sets.above.len(), sets.below.len()), (2, 1, 0));
+/// assert!(point_sets_from_json(b"{\"inliers\": 3}").is_err());
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn point_sets_from_json(bytes: &[u8]) -> Result<PointSets, Error> {
     parse(bytes).map_err(|message| Error::PointFile {
         path: "<memory>".into(),

@@ -217,6 +217,16 @@ pub fn recognize_points(sets: &PointSets, model: Model) -> Result<PointsRecognit
 }
 
 /// [`recognize_points`] with a basis of one's own (see [`Basis`]).
+///
+/// ```
+/// use layertrace::{point_sets_from_json, recognize_points_with, Model, PointsAnswer};
+/// use std::sync::Arc;
+/// let sets = point_sets_from_json(br#"{"inliers": [[0, 0], [2, 1], [4, 2]],
+///     "above": [[0, 1]], "below": [[4, 1]]}"#)?;
+/// let r = recognize_points_with(&sets, Arc::new(Model::Line.basis()))?;
+/// assert!(matches!(r.answer, PointsAnswer::Described { .. }));
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn recognize_points_with(
     sets: &PointSets,
     basis: Arc<dyn Basis>,

@@ -97,6 +97,16 @@ pub struct MarginDirection {
 /// the line basis, the Euclidean distance in the image).
 ///
 /// Returns `None` if either set is empty, a lifting overflows, or no separation is found.
+///
+/// ```
+/// use layertrace::{max_margin_direction, MarginDirection, Model};
+/// // Points below the diagonal and points above it.
+/// let low = [[3i64, 0], [5, 1], [6, 2]];
+/// let high = [[0i64, 3], [1, 5], [2, 6]];
+/// let m: MarginDirection = max_margin_direction(&Model::Line.basis(), &[0, 0], &low, &high, false).unwrap();
+/// let value = |p: &[i64; 2]| m.direction[0] * p[0] as f64 + m.direction[1] * p[1] as f64;
+/// assert!(low.iter().all(|p| value(p) < m.level) && high.iter().all(|p| value(p) > m.level));
+/// ```
 pub fn max_margin_direction<P: AsRef<[i64]>>(
     basis: &dyn Basis,
     origin: &[i64],

@@ -494,6 +494,27 @@ pub struct Recognition {
 
 /// Decides one recognition problem from scratch (convenience for tests and one-off use);
 /// the origin is the first inlier.
+///
+/// ```
+/// use layertrace::{recognize, Model, Outcome, Recognition};
+/// use std::sync::Arc;
+/// let basis = Arc::new(Model::Line.basis());
+/// // Three collinear points, one point above the line and one below: described.
+/// let inliers = vec![vec![0, 0], vec![2, 1], vec![4, 2]];
+/// let r = recognize(basis.clone(), &inliers, &[vec![0, 1]], &[vec![4, 1]]);
+/// assert_eq!(r.outcome, Outcome::Described);
+/// let c = r.certificate.unwrap();
+/// assert!(inliers.iter().all(|p| {
+///     let v = c.value(&*basis, p).unwrap();
+///     c.extremes.lower <= v && v <= c.extremes.upper
+/// }));
+/// // An "above" point between two inliers: no line layer has it strictly above, and the
+/// // witness proves it exactly.
+/// let Recognition { outcome, witness, .. } =
+///     recognize(basis.clone(), &[vec![0, 0], vec![4, 0]], &[vec![2, 0]], &[]);
+/// assert_eq!(outcome, Outcome::NotDescribed);
+/// assert!(witness.unwrap().verify(&*basis));
+/// ```
 pub fn recognize(
     basis: Arc<dyn Basis>,
     inliers: &[Vec<i64>],

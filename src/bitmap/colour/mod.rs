@@ -216,6 +216,18 @@ pub struct Regions {
 /// k-means steps), each pixel takes the nearest palette colour, and the thin fringes of
 /// in-between colour along edges between two regions join the nearer of the two
 /// (`fringe::clean`); colours left without pixels are dropped.
+///
+/// ```
+/// use layertrace::colour_regions;
+/// // Two flat colours: kept exactly.
+/// let img = image::RgbaImage::from_fn(8, 4, |x, _| {
+///     if x < 4 { image::Rgba([200, 30, 30, 255]) } else { image::Rgba([30, 30, 200, 255]) }
+/// });
+/// let r = colour_regions(&img, 4);
+/// assert!(r.exact);
+/// assert_eq!(r.image.palette().len(), 2);
+/// assert_ne!(r.image.get(0, 0), r.image.get(7, 0));
+/// ```
 pub fn colour_regions(rgba: &RgbaImage, max_colours: u16) -> Regions {
     let max_colours = max_colours.clamp(1, MAX_COLOURS);
     let (width, height) = rgba.dimensions();
@@ -300,6 +312,18 @@ fn compact(width: u32, height: u32, mut index: Vec<u16>, colours: Vec<Colour>) -
 
 /// The mask of the pixels with alpha at least [`OPAQUE_ALPHA`] (`--alpha`: the alpha
 /// channel as the foreground of a one-colour icon, whatever its colour).
+///
+/// ```
+/// use layertrace::{alpha_mask, OPAQUE_ALPHA};
+/// // A white disc on transparency: the shape is where alpha is opaque enough.
+/// let icon = image::RgbaImage::from_fn(9, 9, |x, y| {
+///     let inside = (x as i32 - 4).pow(2) + (y as i32 - 4).pow(2) <= 9;
+///     image::Rgba([255, 255, 255, if inside { 255 } else { 0 }])
+/// });
+/// let mask = alpha_mask(&icon);
+/// assert!(mask.get(4, 4) && !mask.get(0, 0));
+/// assert!(OPAQUE_ALPHA > 0);
+/// ```
 pub fn alpha_mask(rgba: &RgbaImage) -> Mask {
     let mut mask = Mask::new(rgba.width(), rgba.height());
     for (i, p) in rgba.pixels().enumerate() {
@@ -311,6 +335,14 @@ pub fn alpha_mask(rgba: &RgbaImage) -> Mask {
 }
 
 /// Whether any pixel of the image is less than opaque.
+///
+/// ```
+/// use layertrace::has_transparency;
+/// let mut img = image::RgbaImage::from_pixel(4, 4, image::Rgba([0, 0, 0, 255]));
+/// assert!(!has_transparency(&img));
+/// img.put_pixel(1, 1, image::Rgba([0, 0, 0, 200]));
+/// assert!(has_transparency(&img));
+/// ```
 pub fn has_transparency(rgba: &RgbaImage) -> bool {
     rgba.pixels().any(|p| p[3] < 255)
 }
@@ -318,6 +350,16 @@ pub fn has_transparency(rgba: &RgbaImage) -> bool {
 /// Reads and decodes the image at `path` (`-`: standard input) as 8-bit RGBA, refusing it
 /// before decoding when it has more than `max_pixels` pixels or its decoding would need
 /// more than `max_memory` bytes.
+///
+/// ```
+/// use layertrace::load_rgba;
+/// use std::path::Path;
+/// let logo = load_rgba(Path::new("samples/colour/colour_logo_crisp.png"), u64::MAX, u64::MAX)?;
+/// assert!(logo.width() > 0 && logo.height() > 0);
+/// // A pixel limit below the image's size refuses it before decoding.
+/// assert!(load_rgba(Path::new("samples/colour/colour_logo_crisp.png"), 10, u64::MAX).is_err());
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn load_rgba(path: &Path, max_pixels: u64, max_memory: u64) -> Result<RgbaImage, Error> {
     let name = display_name(path);
     let bytes = match open(path, &name, max_pixels, max_memory)? {
@@ -335,6 +377,18 @@ pub fn load_rgba(path: &Path, max_pixels: u64, max_memory: u64) -> Result<RgbaIm
 }
 
 /// Decodes an encoded image held in memory as 8-bit RGBA (errors name it `name`).
+///
+/// ```
+/// use layertrace::decode_rgba;
+/// use std::path::Path;
+/// let bytes = std::fs::read("samples/colour/colour_logo_crisp.png").unwrap();
+/// let rgba = decode_rgba(&bytes, Path::new("logo.png"), u64::MAX, u64::MAX)?;
+/// assert!(rgba.width() > 0);
+/// // Errors name the input as given.
+/// let e = decode_rgba(b"not an image", Path::new("bad.png"), u64::MAX, u64::MAX).unwrap_err();
+/// assert!(e.to_string().contains("bad.png"));
+/// # Ok::<(), layertrace::Error>(())
+/// ```
 pub fn decode_rgba(
     bytes: &[u8],
     name: &Path,
