@@ -23,7 +23,7 @@ use crate::curve::PathCommand;
 use crate::decompose::Decomposition;
 use crate::outline::{
     band_contour_path, contour_path, has_staircase, CommandCounts, ContourPath, EdgeClipping,
-    FallbackCounts, JoinCounts, OutlineOptions, MAX_GRID,
+    FallbackCounts, JoinCounts, OutlineOptions, ShapeKey, ShapeMemo, MAX_GRID,
 };
 use kurbo::Point;
 use rayon::prelude::*;
@@ -409,13 +409,49 @@ pub(crate) fn path_data(
     // Contours are drawn independently, in parallel, a group at a time (only the group's
     // path data is held besides the document); appended in order, so the document does not
     // depend on the number of threads.
+    // Tiny contours are drawn once per shape (see `ShapeMemo`); not with a band, whose
+    // drawing depends on the mask round the contour.
+    let mut memo = ShapeMemo::default();
     for (g, group) in d.contours.chunks(CONTOURS_PER_GROUP).enumerate() {
+        let pieces_of = |k: usize| d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
+        let keys: Vec<Option<ShapeKey>> = group
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                band.is_none()
+                    .then(|| ShapeKey::of(c, pieces_of(k)))
+                    .flatten()
+            })
+            .collect();
+        let mut new_shapes: Vec<usize> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for (k, key) in keys.iter().enumerate() {
+            if let Some(key) = key {
+                if !memo.contains(key) && seen.insert(key) {
+                    new_shapes.push(k);
+                }
+            }
+        }
+        let drawn: Vec<ContourPath> = new_shapes
+            .par_iter()
+            .map(|&k| contour_path(&group[k], pieces_of(k), &basis, outline))
+            .collect();
+        for (&k, path) in new_shapes.iter().zip(&drawn) {
+            if let Some(key) = &keys[k] {
+                memo.insert(key.clone(), &group[k], path);
+            }
+        }
         let parts: Vec<(String, CommandCounts, ContourPath)> = group
             .par_iter()
             .enumerate()
             .map(|(k, contour)| {
-                let pieces = d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
-                let exact = || contour_path(contour, pieces, &basis, outline);
+                let pieces = pieces_of(k);
+                let exact = || {
+                    keys[k]
+                        .as_ref()
+                        .and_then(|key| memo.drawing(key, contour))
+                        .unwrap_or_else(|| contour_path(contour, pieces, &basis, outline))
+                };
                 let mut cp = match band {
                     // The exact drawing meets the band's guarantee too: the one with fewer
                     // commands, unless the exact one has a pixel staircase.

@@ -37,6 +37,7 @@ mod partition;
 mod path;
 mod render_check;
 mod separation;
+mod shapes;
 mod smooth;
 mod stretch;
 mod vertices;
@@ -47,6 +48,7 @@ pub(crate) use partition::{corner, loop_path, reverse};
 pub use partition::{BorderSource, Partition, PartitionBorder};
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
 pub use render_check::EdgeClipping;
+pub(crate) use shapes::{ShapeKey, ShapeMemo};
 
 use crate::contour::Contour;
 use crate::decompose::Piece;
