@@ -222,6 +222,18 @@ pub(crate) fn to_text<T: Serialize>(value: &T, layout: &'static Layout) -> Strin
     String::from_utf8(out).expect("serde_json writes UTF-8")
 }
 
+/// A big integer as an exact JSON number (its decimal digits, not a string).
+#[derive(Debug)]
+pub(crate) struct BigNumber<'a>(pub(crate) &'a num_bigint::BigInt);
+
+impl Serialize for BigNumber<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        serde_json::value::RawValue::from_string(self.0.to_string())
+            .map_err(serde::ser::Error::custom)?
+            .serialize(s)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -290,5 +302,17 @@ mod tests {
         );
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(v["d\"e"], "q\"\n");
+    }
+
+    #[test]
+    fn big_numbers_are_exact_numbers() {
+        let n: num_bigint::BigInt = "-123456789012345678901234567890123456789012345678901234567890"
+            .parse()
+            .unwrap();
+        let text = to_text(&[BigNumber(&n)], &LAYOUT);
+        assert_eq!(
+            text,
+            "[-123456789012345678901234567890123456789012345678901234567890]\n"
+        );
     }
 }
