@@ -14,7 +14,7 @@
 //!
 //! One contour per line, its pieces from the next line on, one per line; compact
 //! otherwise. The documents are derived `Serialize` types written by serde_json, the lines
-//! laid out by [`super::json_layout`].
+//! laid out by the crate's `export::json_layout`.
 //!
 //! A piece that ended before a point that might have extended it has a `"cut"` member
 //! after `"kind"`: `"budget"` (its work budget ran out, see [`crate::WorkBudget`]) or

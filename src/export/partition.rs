@@ -19,6 +19,27 @@
 //! border), which outline it was cut from (`"drawn"`: `left`, `right` or `cracks`) and the
 //! pieces of that region's contours beside it (`"pieces"`: `[contour, piece]` indices into
 //! that region's `"contours"`, whose equations they are).
+//!
+//! ```text
+//! {"format": "layertrace-colour/1", "width": W, "height": H, "layout": "partition",
+//!  "model": "conic", "cover": "greedy",
+//!  "basis": [...],
+//!  "regions": [
+//!  {"colour": "#rrggbb", "pixels": N, "loops": [[{"border": 0, "reversed": false},...],...],
+//!   "contours": [
+//!   {"hole": false, "points": [[x,y], ...],
+//!    "pieces": [{...},
+//!     {...}]}
+//!  ]}
+//!  ],
+//!  "borders": [
+//!   {"left": 0, "right": "outside", "closed": true, "drawn": "left", "pieces": [[0,0], ...],
+//!    "corners": [[x,y], ...]}
+//!  ]}
+//! ```
+//!
+//! One region per line, its contours as in the decomposition; one border per line, its
+//! corners on the next.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;

@@ -3,7 +3,7 @@
 //! [`read_point_sets`] documents the point files, [`recognition_json`] the answers. Point
 //! files are read with serde's visitors (no derive), so that a bad value is reported with
 //! its field and the parser's line and column; answers are derived `Serialize` types written
-//! by serde_json (laid out by [`crate::export::json_layout`]).
+//! by serde_json (laid out by `export::json_layout`).
 
 use super::{Layer, PointSets, PointsAnswer, PointsRecognition};
 use crate::error::Error;
