@@ -4,11 +4,17 @@
 //! {"format": "layertrace-decomposition/2", "width": W, "height": H,
 //!  "threshold": 128, "invert": false, "model": "conic", "cover": "greedy",
 //!  "basis": ["x^2","x*y","y^2","x","y","1"],
-//!  "contours": [{"hole": false, "points": [[x,y], ...],
-//!                "pieces": [{"first": 0, "last": 17, "origin": [x0,y0],
-//!                              "coefficients": [...], "lower": l, "upper": u,
-//!                              "kind": "ellipse"}]}]}
+//!  "contours": [
+//!   {"hole": false, "points": [[x,y], ...],
+//!    "pieces": [{"first": 0, "last": 17, "origin": [x0,y0], "coefficients": [...], "lower": l, "upper": u, "kind": "ellipse"},
+//!     {"first": 17, ...}]},
+//!   {"hole": true, ...}
+//!  ]}
 //! ```
+//!
+//! One contour per line, its pieces from the next line on, one per line; compact
+//! otherwise. The documents are derived `Serialize` types written by serde_json, the lines
+//! laid out by the crate's `export::json_layout`.
 //!
 //! A piece that ended before a point that might have extended it has a `"cut"` member
 //! after `"kind"`: `"budget"` (its work budget ran out, see [`crate::WorkBudget`]) or
@@ -26,10 +32,11 @@
 //! exactly on the piece's own sets): `-5x - 8y` with `0 ≤ f ≤ 7` rather than whatever
 //! scale the incremental recognizer's rounding left.
 
+use super::json_layout::{to_text, Break, Layout, List};
 use crate::decompose::{piece_outliers, Decomposition, Outliers};
 use crate::level::piece_kind;
 use crate::recognize::small_certificate;
-use std::fmt::Write as _;
+use serde::Serialize;
 
 /// What the JSON records besides the decomposition.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,8 +51,94 @@ pub struct JsonHeader {
     pub invert: bool,
 }
 
-pub(crate) fn quote(s: &str) -> String {
-    serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_string())
+/// A `layertrace-decomposition/2` document.
+#[derive(Serialize)]
+struct DecompositionDoc {
+    format: &'static str,
+    width: u32,
+    height: u32,
+    threshold: u8,
+    invert: bool,
+    model: String,
+    cover: &'static str,
+    basis: Vec<String>,
+    contours: Vec<ContourDoc>,
+}
+
+/// One contour: its points and its pieces.
+#[derive(Serialize)]
+pub(crate) struct ContourDoc {
+    hole: bool,
+    points: Vec<[i64; 2]>,
+    pieces: Vec<PieceDoc>,
+}
+
+/// One piece and its equation.
+#[derive(Serialize)]
+struct PieceDoc {
+    first: usize,
+    last: usize,
+    origin: [i64; 2],
+    /// The certificate's, then the constant's 0.
+    coefficients: Vec<i64>,
+    lower: i128,
+    upper: i128,
+    kind: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cut: Option<&'static str>,
+}
+
+/// A list of contours in the object `parent`: one contour per line, indented by two spaces
+/// (the same in every document; [`PIECES_BREAK`] and [`PIECES_LIST`] lay out its pieces).
+pub(crate) const fn contours_list(parent: &'static str) -> List {
+    List {
+        parent,
+        key: "contours",
+        line: "\n  ",
+        first: true,
+        close: "\n ",
+    }
+}
+
+/// The line break before a contour's `"pieces"`.
+pub(crate) const PIECES_BREAK: Break = Break {
+    parent: "contours",
+    key: "pieces",
+    line: "\n   ",
+};
+
+/// One piece per line.
+pub(crate) const PIECES_LIST: List = List {
+    parent: "contours",
+    key: "pieces",
+    line: "\n    ",
+    first: false,
+    close: "",
+};
+
+/// A top-level member on a new line.
+pub(crate) const fn top_break(key: &'static str) -> Break {
+    Break {
+        parent: "",
+        key,
+        line: "\n ",
+    }
+}
+
+const DECOMPOSITION: Layout = Layout {
+    breaks: &[
+        top_break("threshold"),
+        top_break("basis"),
+        top_break("contours"),
+        PIECES_BREAK,
+    ],
+    lists: &[contours_list(""), PIECES_LIST],
+};
+
+/// The basis' function names, in coefficient order.
+pub(crate) fn basis_names(model: crate::model::Model) -> Vec<String> {
+    let basis = model.basis();
+    crate::model::Basis::names(&basis)
 }
 
 /// The JSON text of a decomposition (one contour per line, compact otherwise).
@@ -65,92 +158,65 @@ pub(crate) fn quote(s: &str) -> String {
 /// assert!(pieces.iter().all(|p| p["coefficients"].as_array().unwrap().len() == 3));
 /// ```
 pub fn decomposition_json(d: &Decomposition, header: &JsonHeader) -> String {
-    let basis = d.model.basis();
-    let basis_ref: &dyn crate::model::Basis = &basis;
-    let mut s = String::new();
-    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
-    // Writing to a String cannot fail.
-    let _ = write!(
-        s,
-        "{{\"format\": \"layertrace-decomposition/2\", \"width\": {}, \"height\": {},\n \"threshold\": {}, \"invert\": {}, \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"contours\": [",
-        header.width,
-        header.height,
-        header.threshold,
-        header.invert,
-        quote(&d.model.name()),
-        quote(d.cover.name()),
-        names.join(",")
-    );
-    write_contours(d, 0, &mut s);
-    s.push_str("\n ]}\n");
-    s
+    let doc = DecompositionDoc {
+        format: "layertrace-decomposition/2",
+        width: header.width,
+        height: header.height,
+        threshold: header.threshold,
+        invert: header.invert,
+        model: d.model.name(),
+        cover: d.cover.name(),
+        basis: basis_names(d.model),
+        contours: contours(d, 0),
+    };
+    to_text(&doc, &DECOMPOSITION)
 }
 
-/// Appends the contours of `d`, each with its pieces (the members of `"contours"`, one
-/// contour per line, each line starting with a newline and two spaces), every point and
-/// origin moved by `-margin` in x and y (the equations, taken at the origin, are the same).
-pub(crate) fn write_contours(d: &Decomposition, margin: i64, s: &mut String) {
+/// The contours of `d`, each with its pieces, every point and origin moved by `-margin` in
+/// x and y (the equations, taken at the origin, are the same).
+pub(crate) fn contours(d: &Decomposition, margin: i64) -> Vec<ContourDoc> {
     let basis = d.model.basis();
     let basis_ref: &dyn crate::model::Basis = &basis;
-    for (ci, (c, pieces)) in d.contours.iter().zip(&d.pieces).enumerate() {
-        if ci > 0 {
-            s.push(',');
-        }
-        let _ = write!(s, "\n  {{\"hole\": {}, \"points\": [", c.hole);
-        for (i, p) in c.points.iter().enumerate() {
-            if i > 0 {
-                s.push(',');
-            }
-            let _ = write!(
-                s,
-                "[{},{}]",
-                i64::from(p.x) - margin,
-                i64::from(p.y) - margin
-            );
-        }
-        s.push_str("],\n   \"pieces\": [");
-        for (k, p) in pieces.iter().enumerate() {
-            if k > 0 {
-                s.push_str(",\n    ");
-            }
-            let xy = |q: &crate::pixel::Pixel| vec![i64::from(q.x), i64::from(q.y)];
-            let Outliers { right, left } = piece_outliers(&c.points, p.first, p.last, d.rule);
-            let small = small_certificate(
-                basis_ref,
-                &p.certificate,
-                &c.points[p.first..=p.last]
-                    .iter()
-                    .map(xy)
-                    .collect::<Vec<_>>(),
-                &right.iter().map(xy).collect::<Vec<_>>(),
-                &left.iter().map(xy).collect::<Vec<_>>(),
-            );
-            let cert = &small;
-            let coefficients: Vec<String> = cert
-                .coefficients
+    let xy = |q: &crate::pixel::Pixel| vec![i64::from(q.x), i64::from(q.y)];
+    let moved = |q: &crate::pixel::Pixel| [i64::from(q.x) - margin, i64::from(q.y) - margin];
+    d.contours
+        .iter()
+        .zip(&d.pieces)
+        .map(|(c, pieces)| ContourDoc {
+            hole: c.hole,
+            points: c.points.iter().map(moved).collect(),
+            pieces: pieces
                 .iter()
-                .map(|v| v.to_string())
-                .chain(std::iter::once("0".to_string()))
-                .collect();
-            let _ = write!(
-                s,
-                "{{\"first\": {}, \"last\": {}, \"origin\": [{},{}], \"coefficients\": [{}], \"lower\": {}, \"upper\": {}, \"kind\": \"{}\"}}",
-                p.first,
-                p.last,
-                cert.origin.first().copied().unwrap_or(0) - margin,
-                cert.origin.get(1).copied().unwrap_or(0) - margin,
-                coefficients.join(","),
-                cert.extremes.lower,
-                cert.extremes.upper,
-                piece_kind(basis_ref, cert).name()
-            );
-            if let Some(cut) = p.cut {
-                s.pop();
-                let _ = write!(s, ", \"cut\": \"{}\"}}", cut.name());
-            }
-        }
-        s.push_str("]}");
-    }
+                .map(|p| {
+                    let Outliers { right, left } =
+                        piece_outliers(&c.points, p.first, p.last, d.rule);
+                    let cert = small_certificate(
+                        basis_ref,
+                        &p.certificate,
+                        &c.points[p.first..=p.last]
+                            .iter()
+                            .map(xy)
+                            .collect::<Vec<_>>(),
+                        &right.iter().map(xy).collect::<Vec<_>>(),
+                        &left.iter().map(xy).collect::<Vec<_>>(),
+                    );
+                    PieceDoc {
+                        first: p.first,
+                        last: p.last,
+                        origin: [
+                            cert.origin.first().copied().unwrap_or(0) - margin,
+                            cert.origin.get(1).copied().unwrap_or(0) - margin,
+                        ],
+                        coefficients: cert.coefficients.iter().copied().chain([0]).collect(),
+                        lower: cert.extremes.lower,
+                        upper: cert.extremes.upper,
+                        kind: piece_kind(basis_ref, &cert).name(),
+                        cut: p.cut.map(|c| c.name()),
+                    }
+                })
+                .collect(),
+        })
+        .collect()
 }
 
 /// One region of a colour image: its colour, its pixel count, and the decomposition of the
@@ -168,6 +234,49 @@ pub struct JsonRegion<'a> {
     pub margin: i64,
 }
 
+/// A `layertrace-colour/1` document; `R` is its regions' type (the stack's or the
+/// partition's) and `B` its borders' (the partition's only).
+#[derive(Serialize)]
+pub(crate) struct ColourDoc<'a, R, B> {
+    pub(crate) format: &'static str,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) layout: &'a str,
+    pub(crate) model: String,
+    pub(crate) cover: &'static str,
+    pub(crate) basis: Vec<String>,
+    pub(crate) regions: Vec<R>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) borders: Option<Vec<B>>,
+}
+
+/// A region of the `stack` layout.
+#[derive(Serialize)]
+struct StackRegionDoc<'a> {
+    colour: &'a str,
+    pixels: u64,
+    contours: Vec<ContourDoc>,
+}
+
+const COLOUR: Layout = Layout {
+    breaks: &[
+        top_break("model"),
+        top_break("basis"),
+        top_break("regions"),
+        PIECES_BREAK,
+    ],
+    lists: &[REGIONS_LIST, contours_list("regions"), PIECES_LIST],
+};
+
+/// One region per line.
+pub(crate) const REGIONS_LIST: List = List {
+    parent: "",
+    key: "regions",
+    line: "\n ",
+    first: true,
+    close: "\n ",
+};
+
 /// The JSON text of a colour vectorization (`layertrace-colour/1`): the header of
 /// [`decomposition_json`] without `threshold` and `invert`, then `"layout"` and the regions
 /// in drawing order, each with its colour and the contours of its layer, written as in
@@ -175,9 +284,15 @@ pub struct JsonRegion<'a> {
 ///
 /// ```text
 /// {"format": "layertrace-colour/1", "width": W, "height": H, "layout": "stack",
-///  "model": "conic", "cover": "greedy", "basis": [...],
+///  "model": "conic", "cover": "greedy",
+///  "basis": [...],
 ///  "regions": [
-///   {"colour": "#rrggbb", "pixels": N, "contours": [{"hole": ..., "points": ..., "pieces": ...}]}]}
+///  {"colour": "#rrggbb", "pixels": N, "contours": [
+///   {"hole": false, "points": [[x,y], ...],
+///    "pieces": [{...},
+///     {...}]}
+///  ]}
+///  ]}
 /// ```
 ///
 /// With the `stack` layout, region `k`'s contours are the borders of its layer: the pixels
@@ -191,45 +306,25 @@ pub fn colour_json(
     height: u32,
     layout: &str,
 ) -> String {
-    let mut s = colour_header(model, cover, width, height, layout);
-    for (k, r) in regions.iter().enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        let _ = write!(
-            s,
-            "\n {{\"colour\": {}, \"pixels\": {}, \"contours\": [",
-            quote(r.colour),
-            r.pixels
-        );
-        write_contours(r.decomposition, r.margin, &mut s);
-        s.push_str("\n ]}");
-    }
-    s.push_str("\n ]}\n");
-    s
-}
-
-/// The opening of a `layertrace-colour/1` document, up to the `"regions"` list's `[`.
-pub(crate) fn colour_header(
-    model: crate::model::Model,
-    cover: crate::decompose::Cover,
-    width: u32,
-    height: u32,
-    layout: &str,
-) -> String {
-    let basis = model.basis();
-    let basis_ref: &dyn crate::model::Basis = &basis;
-    let names: Vec<String> = basis_ref.names().iter().map(|n| quote(n)).collect();
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "{{\"format\": \"layertrace-colour/1\", \"width\": {width}, \"height\": {height}, \"layout\": {},\n \"model\": {}, \"cover\": {},\n \"basis\": [{}],\n \"regions\": [",
-        quote(layout),
-        quote(&model.name()),
-        quote(cover.name()),
-        names.join(",")
-    );
-    s
+    let doc: ColourDoc<_, ()> = ColourDoc {
+        format: "layertrace-colour/1",
+        width,
+        height,
+        layout,
+        model: model.name(),
+        cover: cover.name(),
+        basis: basis_names(model),
+        regions: regions
+            .iter()
+            .map(|r| StackRegionDoc {
+                colour: r.colour,
+                pixels: r.pixels,
+                contours: contours(r.decomposition, r.margin),
+            })
+            .collect(),
+        borders: None,
+    };
+    to_text(&doc, &COLOUR)
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ mod drawing;
 mod eps;
 pub mod format;
 pub mod json;
+pub(crate) mod json_layout;
 pub mod layers;
 pub mod partition;
 mod pdf;

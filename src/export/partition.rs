@@ -19,15 +19,41 @@
 //! border), which outline it was cut from (`"drawn"`: `left`, `right` or `cracks`) and the
 //! pieces of that region's contours beside it (`"pieces"`: `[contour, piece]` indices into
 //! that region's `"contours"`, whose equations they are).
+//!
+//! ```text
+//! {"format": "layertrace-colour/1", "width": W, "height": H, "layout": "partition",
+//!  "model": "conic", "cover": "greedy",
+//!  "basis": [...],
+//!  "regions": [
+//!  {"colour": "#rrggbb", "pixels": N, "loops": [[{"border": 0, "reversed": false},...],...],
+//!   "contours": [
+//!   {"hole": false, "points": [[x,y], ...],
+//!    "pieces": [{...},
+//!     {...}]}
+//!  ]}
+//!  ],
+//!  "borders": [
+//!   {"left": 0, "right": "outside", "closed": true, "drawn": "left", "pieces": [[0,0], ...],
+//!    "corners": [[x,y], ...]}
+//!  ]}
+//! ```
+//!
+//! One region per line, its contours as in the decomposition; one border per line, its
+//! corners on the next.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use super::json::{quote, write_contours};
+use super::json::{
+    basis_names, contours, contours_list, top_break, ColourDoc, ContourDoc, PIECES_BREAK,
+    PIECES_LIST, REGIONS_LIST,
+};
+use super::json_layout::{to_text, Break, Layout, List};
 use super::svg::{drop_closing_line, write_path_data, xml_escape};
 use crate::contour::crack_sides;
 use crate::decompose::Decomposition;
 use crate::outline::{BorderSource, CommandCounts, ContourPath, Partition};
+use serde::Serialize;
 
 /// Per crack-side pixel: the `(contour, piece)` pairs of a region's decomposition there.
 type PiecesAt = HashMap<(i64, i64), Vec<(usize, usize)>>;
@@ -87,6 +113,74 @@ pub(crate) struct PartitionRegion<'a> {
     pub(crate) decomposition: &'a Decomposition,
 }
 
+/// A region of the partition: its loops, then its contours.
+#[derive(Serialize)]
+struct RegionDoc<'a> {
+    colour: &'a str,
+    pixels: u64,
+    loops: Vec<Vec<LoopStep>>,
+    contours: Vec<ContourDoc>,
+}
+
+/// One border of a loop.
+#[derive(Serialize)]
+struct LoopStep {
+    border: usize,
+    reversed: bool,
+}
+
+/// A border: its two sides, how it was drawn, the pieces beside it and its corners.
+#[derive(Serialize)]
+struct BorderDoc {
+    left: Side,
+    right: Side,
+    closed: bool,
+    drawn: &'static str,
+    /// `[contour, piece]`.
+    pieces: Vec<[usize; 2]>,
+    corners: Vec<[i64; 2]>,
+}
+
+/// A border's side: a region index, or `"none"` or `"outside"`.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum Side {
+    Region(usize),
+    Other(&'static str),
+}
+
+const PARTITION: Layout = Layout {
+    breaks: &[
+        top_break("model"),
+        top_break("basis"),
+        top_break("regions"),
+        top_break("borders"),
+        Break {
+            parent: "regions",
+            key: "contours",
+            line: "\n  ",
+        },
+        PIECES_BREAK,
+        Break {
+            parent: "borders",
+            key: "corners",
+            line: "\n   ",
+        },
+    ],
+    lists: &[
+        REGIONS_LIST,
+        contours_list("regions"),
+        PIECES_LIST,
+        List {
+            parent: "",
+            key: "borders",
+            line: "\n  ",
+            first: true,
+            close: "\n ",
+        },
+    ],
+};
+
 /// The JSON text of a partition (see the module documentation).
 pub(crate) fn partition_json(
     regions: &[PartitionRegion<'_>],
@@ -96,32 +190,23 @@ pub(crate) fn partition_json(
     width: u32,
     height: u32,
 ) -> String {
-    let mut s = super::json::colour_header(model, cover, width, height, "partition");
-    for (k, r) in regions.iter().enumerate() {
-        if k > 0 {
-            s.push(',');
-        }
-        let _ = write!(
-            s,
-            "\n {{\"colour\": {}, \"pixels\": {}, \"loops\": [",
-            quote(r.colour),
-            r.pixels
-        );
-        for (i, l) in partition.loops[k].iter().enumerate() {
-            if i > 0 {
-                s.push(',');
-            }
-            let items: Vec<String> = l
+    let region_docs = regions
+        .iter()
+        .zip(&partition.loops)
+        .map(|(r, loops)| RegionDoc {
+            colour: r.colour,
+            pixels: r.pixels,
+            loops: loops
                 .iter()
-                .map(|&(b, rev)| format!("{{\"border\": {b}, \"reversed\": {rev}}}"))
-                .collect();
-            let _ = write!(s, "[{}]", items.join(","));
-        }
-        s.push_str("],\n  \"contours\": [");
-        write_contours(r.decomposition, margin, &mut s);
-        s.push_str("\n ]}");
-    }
-    s.push_str("\n ],\n \"borders\": [");
+                .map(|l| {
+                    l.iter()
+                        .map(|&(border, reversed)| LoopStep { border, reversed })
+                        .collect()
+                })
+                .collect(),
+            contours: contours(r.decomposition, margin),
+        })
+        .collect();
     // Per region: the pieces beside each of its contour pixels (image coordinates).
     let mut beside: Vec<PiecesAt> = Vec::new();
     for r in regions {
@@ -145,53 +230,56 @@ pub(crate) fn partition_json(
         }
         beside.push(m);
     }
-    let side = |l: usize| -> String {
+    let side = |l: usize| {
         if l < partition.none {
-            l.to_string()
+            Side::Region(l)
         } else if l == partition.none {
-            "\"none\"".into()
+            Side::Other("none")
         } else {
-            "\"outside\"".into()
+            Side::Other("outside")
         }
     };
-    for (i, pb) in partition.borders.iter().enumerate() {
-        if i > 0 {
-            s.push(',');
-        }
-        let b = &pb.border;
-        let corners: Vec<String> = b
-            .corners
-            .iter()
-            .map(|(x, y)| format!("[{x},{y}]"))
-            .collect();
-        let owner = match pb.source {
-            BorderSource::Left => Some((b.left, 0)),
-            BorderSource::Right => Some((b.right, 1)),
-            BorderSource::Cracks => None,
-        };
-        let mut pieces: Vec<(usize, usize)> = Vec::new();
-        if let Some((region, which)) = owner {
-            for c in b.corners.windows(2) {
-                let px = crack_sides(c[0], c[1])[which];
-                if let Some(v) = beside[region].get(&px) {
-                    pieces.extend(v.iter().copied());
+    let border_docs = partition
+        .borders
+        .iter()
+        .map(|pb| {
+            let b = &pb.border;
+            let owner = match pb.source {
+                BorderSource::Left => Some((b.left, 0)),
+                BorderSource::Right => Some((b.right, 1)),
+                BorderSource::Cracks => None,
+            };
+            let mut pieces: Vec<(usize, usize)> = Vec::new();
+            if let Some((region, which)) = owner {
+                for c in b.corners.windows(2) {
+                    let px = crack_sides(c[0], c[1])[which];
+                    if let Some(v) = beside[region].get(&px) {
+                        pieces.extend(v.iter().copied());
+                    }
                 }
             }
-        }
-        pieces.sort_unstable();
-        pieces.dedup();
-        let pieces: Vec<String> = pieces.iter().map(|(c, p)| format!("[{c},{p}]")).collect();
-        let _ = write!(
-            s,
-            "\n  {{\"left\": {}, \"right\": {}, \"closed\": {}, \"drawn\": \"{}\", \"pieces\": [{}],\n   \"corners\": [{}]}}",
-            side(b.left),
-            side(b.right),
-            b.closed,
-            pb.source.name(),
-            pieces.join(","),
-            corners.join(",")
-        );
-    }
-    s.push_str("\n ]}\n");
-    s
+            pieces.sort_unstable();
+            pieces.dedup();
+            BorderDoc {
+                left: side(b.left),
+                right: side(b.right),
+                closed: b.closed,
+                drawn: pb.source.name(),
+                pieces: pieces.iter().map(|&(c, p)| [c, p]).collect(),
+                corners: b.corners.iter().map(|&(x, y)| [x, y]).collect(),
+            }
+        })
+        .collect();
+    let doc = ColourDoc {
+        format: "layertrace-colour/1",
+        width,
+        height,
+        layout: "partition",
+        model: model.name(),
+        cover: cover.name(),
+        basis: basis_names(model),
+        regions: region_docs,
+        borders: Some(border_docs),
+    };
+    to_text(&doc, &PARTITION)
 }

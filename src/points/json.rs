@@ -2,13 +2,18 @@
 //!
 //! [`read_point_sets`] documents the point files, [`recognition_json`] the answers. Point
 //! files are read with serde's visitors (no derive), so that a bad value is reported with
-//! its field and the parser's line and column.
+//! its field and the parser's line and column; answers are derived `Serialize` types written
+//! by serde_json (laid out by `export::json_layout`).
 
-use super::{PointSets, PointsAnswer, PointsRecognition};
+use super::{Layer, PointSets, PointsAnswer, PointsRecognition};
 use crate::error::Error;
+use crate::export::json::top_break;
+use crate::export::json_layout::{to_text, BigNumber, Layout, List};
 use crate::recognize::Side;
+use num_bigint::BigInt;
 use serde::de::{self, DeserializeSeed, MapAccess, SeqAccess, Visitor};
-use std::fmt::{self, Write as _};
+use serde::Serialize;
+use std::fmt;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -307,15 +312,130 @@ fn too_large(at: &str) -> String {
     format!("{at} is beyond the 64-bit integer range (-2^63 to 2^63 - 1)")
 }
 
-/// `[1,-2,3]`.
-fn list<T: fmt::Display>(values: impl IntoIterator<Item = T>) -> String {
-    let items: Vec<String> = values.into_iter().map(|v| v.to_string()).collect();
-    format!("[{}]", items.join(","))
+/// A `layertrace-recognition/1` document; the members of the other answers are absent.
+#[derive(Serialize)]
+struct RecognitionDoc<'a> {
+    format: &'static str,
+    model: Option<String>,
+    dimension: usize,
+    basis: &'a [String],
+    inliers: usize,
+    above: usize,
+    below: usize,
+    result: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    thinnest: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normalisation: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    thickness: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    layer: Option<LayerDoc<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    local: Option<LocalDoc<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    programs: Option<ProgramsDoc>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    witness: Option<WitnessDoc<'a>>,
+    stats: StatsDoc,
 }
 
-/// A number or `null`.
-fn or_null<T: fmt::Display>(v: Option<T>) -> String {
-    v.map_or_else(|| "null".into(), |v| v.to_string())
+/// A layer in the points' own coordinates, its big integers as exact numbers.
+#[derive(Serialize)]
+struct LayerDoc<'a> {
+    /// The layer's, then the constant's 0.
+    coefficients: Vec<BigNumber<'a>>,
+    lower: BigNumber<'a>,
+    upper: BigNumber<'a>,
+    above: Option<BigNumber<'a>>,
+    below: Option<BigNumber<'a>>,
+}
+
+/// The recognizer's certificate, relative to its origin.
+#[derive(Serialize)]
+struct LocalDoc<'a> {
+    origin: &'a [i64],
+    /// The certificate's, then the constant's 0.
+    coefficients: Vec<i64>,
+    lower: i128,
+    upper: i128,
+    above: Option<i128>,
+    below: Option<i128>,
+}
+
+/// The thinnest layer's linear programs.
+#[derive(Serialize)]
+struct ProgramsDoc {
+    started: u64,
+    pruned: u64,
+    pivots: u64,
+    rounds: u64,
+    points: u64,
+}
+
+/// The proof that no layer separates the sets.
+#[derive(Serialize)]
+struct WitnessDoc<'a> {
+    origin: &'a [i64],
+    terms: Vec<TermDoc<'a>>,
+}
+
+/// One pair of the witness, with its exact weight `p/q`.
+#[derive(Serialize)]
+struct TermDoc<'a> {
+    weight: String,
+    inlier: &'a [i64],
+    outlier: &'a [i64],
+    side: &'static str,
+}
+
+/// The recognizer's counters.
+#[derive(Serialize)]
+struct StatsDoc {
+    queries: u64,
+    certificate_reused: u64,
+    float_runs: u64,
+    float_iterations: u64,
+    whitened: u64,
+    exact_fallbacks: u64,
+    undecided: u64,
+    over_budget: u64,
+    work: u64,
+}
+
+/// Lines: the format, model and dimension; the basis; the three counts; the result; the
+/// thinnest layer's flag, normalisation and thickness; then one line per member (and per
+/// witness term).
+const RECOGNITION: Layout = Layout {
+    breaks: &[
+        top_break("basis"),
+        top_break("inliers"),
+        top_break("result"),
+        top_break("thinnest"),
+        top_break("layer"),
+        top_break("local"),
+        top_break("programs"),
+        top_break("witness"),
+        top_break("stats"),
+    ],
+    lists: &[List {
+        parent: "witness",
+        key: "terms",
+        line: "\n   ",
+        first: true,
+        close: "",
+    }],
+};
+
+/// The layer's document: its coefficients, then the constant's 0.
+fn layer_doc<'a>(l: &'a Layer, zero: &'a BigInt) -> LayerDoc<'a> {
+    LayerDoc {
+        coefficients: l.coefficients.iter().chain([zero]).map(BigNumber).collect(),
+        lower: BigNumber(&l.lower),
+        upper: BigNumber(&l.upper),
+        above: l.above.as_ref().map(BigNumber),
+        below: l.below.as_ref().map(BigNumber),
+    }
 }
 
 /// The JSON text of a recognition.
@@ -371,104 +491,85 @@ fn or_null<T: fmt::Display>(v: Option<T>) -> String {
 /// the simplex pivots, the rounds of constraint generation and the distinct lifted inliers.
 /// The recognizer is not run: its `stats` are zero.
 pub fn recognition_json(r: &PointsRecognition) -> String {
-    let quote = |s: &str| serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into());
-    let mut s = String::new();
-    let model = r.model.map_or_else(|| "null".into(), |m| quote(&m.name()));
-    let names: Vec<String> = r.basis.iter().map(|n| quote(n)).collect();
-    // Writing to a String cannot fail.
-    let _ = write!(
-        s,
-        "{{\"format\": \"layertrace-recognition/1\", \"model\": {model}, \"dimension\": {},\n \"basis\": [{}],\n \"inliers\": {}, \"above\": {}, \"below\": {},\n",
-        r.dimension,
-        names.join(","),
-        r.counts[0],
-        r.counts[1],
-        r.counts[2]
-    );
+    let zero = BigInt::default();
+    let t = &r.stats;
+    let mut doc = RecognitionDoc {
+        format: "layertrace-recognition/1",
+        model: r.model.map(|m| m.name()),
+        dimension: r.dimension,
+        basis: &r.basis,
+        inliers: r.counts[0],
+        above: r.counts[1],
+        below: r.counts[2],
+        result: "described",
+        thinnest: None,
+        normalisation: None,
+        thickness: None,
+        layer: None,
+        local: None,
+        programs: None,
+        witness: None,
+        stats: StatsDoc {
+            queries: t.queries,
+            certificate_reused: t.certificate_reused,
+            float_runs: t.float_runs,
+            float_iterations: t.float_iterations,
+            whitened: t.whitened,
+            exact_fallbacks: t.exact_fallbacks,
+            undecided: t.undecided,
+            over_budget: t.over_budget,
+            work: t.work,
+        },
+    };
     match &r.answer {
         PointsAnswer::Described { layer, local } => {
-            s.push_str(" \"result\": \"described\",\n");
-            if let Some(l) = layer {
-                let zero = num_bigint::BigInt::default();
-                let _ = writeln!(
-                    s,
-                    " \"layer\": {{\"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": {}, \"below\": {}}},",
-                    list(l.coefficients.iter().chain([&zero])),
-                    l.lower,
-                    l.upper,
-                    or_null(l.above.as_ref()),
-                    or_null(l.below.as_ref())
-                );
-            }
-            let _ = writeln!(
-                s,
-                " \"local\": {{\"origin\": {}, \"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": {}, \"below\": {}}},",
-                list(&local.origin),
-                list(local.coefficients.iter().chain(std::iter::once(&0))),
-                local.extremes.lower,
-                local.extremes.upper,
-                or_null(local.extremes.above),
-                or_null(local.extremes.below)
-            );
+            doc.layer = layer.as_ref().map(|l| layer_doc(l, &zero));
+            let e = &local.extremes;
+            doc.local = Some(LocalDoc {
+                origin: &local.origin,
+                coefficients: local.coefficients.iter().copied().chain([0]).collect(),
+                lower: e.lower,
+                upper: e.upper,
+                above: e.above,
+                below: e.below,
+            });
         }
         PointsAnswer::Thinnest(t) => {
-            let l = &t.layer;
-            let zero = num_bigint::BigInt::default();
             let w = &t.work;
-            let _ = write!(
-                s,
-                " \"result\": \"described\",\n \"thinnest\": true, \"normalisation\": \"max-abs\", \"thickness\": \"{}\",\n \"layer\": {{\"coefficients\": {}, \"lower\": {}, \"upper\": {}, \"above\": null, \"below\": null}},\n \"programs\": {{\"started\": {}, \"pruned\": {}, \"pivots\": {}, \"rounds\": {}, \"points\": {}}},\n",
-                t.thickness,
-                list(l.coefficients.iter().chain([&zero])),
-                l.lower,
-                l.upper,
-                w.programs,
-                w.pruned,
-                w.pivots,
-                w.rounds,
-                w.points
-            );
+            doc.thinnest = Some(true);
+            doc.normalisation = Some("max-abs");
+            doc.thickness = Some(t.thickness.to_string());
+            doc.layer = Some(layer_doc(&t.layer, &zero));
+            doc.programs = Some(ProgramsDoc {
+                started: w.programs,
+                pruned: w.pruned,
+                pivots: w.pivots,
+                rounds: w.rounds,
+                points: w.points,
+            });
         }
         PointsAnswer::NotDescribed(w) => {
-            s.push_str(" \"result\": \"not described\",\n");
-            let _ = write!(
-                s,
-                " \"witness\": {{\"origin\": {}, \"terms\": [",
-                list(&w.origin)
-            );
-            for (k, ((inlier, outlier, side), weight)) in
-                w.pairs.iter().zip(w.exact_weights()).enumerate()
-            {
-                let side = match side {
-                    Side::Upper => "above",
-                    Side::Lower => "below",
-                };
-                let _ = write!(
-                    s,
-                    "{}\n   {{\"weight\": \"{weight}\", \"inlier\": {}, \"outlier\": {}, \"side\": \"{side}\"}}",
-                    if k > 0 { "," } else { "" },
-                    list(inlier),
-                    list(outlier)
-                );
-            }
-            s.push_str("]},\n");
+            doc.result = "not described";
+            doc.witness = Some(WitnessDoc {
+                origin: &w.origin,
+                terms: w
+                    .pairs
+                    .iter()
+                    .zip(w.exact_weights())
+                    .map(|((inlier, outlier, side), weight)| TermDoc {
+                        weight: weight.to_string(),
+                        inlier,
+                        outlier,
+                        side: match side {
+                            Side::Upper => "above",
+                            Side::Lower => "below",
+                        },
+                    })
+                    .collect(),
+            });
         }
     }
-    let t = &r.stats;
-    let _ = writeln!(
-        s,
-        " \"stats\": {{\"queries\": {}, \"certificate_reused\": {}, \"float_runs\": {}, \"float_iterations\": {}, \"whitened\": {}, \"exact_fallbacks\": {}, \"undecided\": {}, \"over_budget\": {}, \"work\": {}}}}}",
-        t.queries,
-        t.certificate_reused,
-        t.float_runs,
-        t.float_iterations,
-        t.whitened,
-        t.exact_fallbacks,
-        t.undecided,
-        t.over_budget,
-        t.work
-    );
-    s
+    to_text(&doc, &RECOGNITION)
 }
 
 #[cfg(test)]
