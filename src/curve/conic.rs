@@ -201,6 +201,9 @@ impl Conic {
     /// (`rx` along the axis rotated by `x_rotation = θ`). `θ ∈ (−π/2, π/2]`.
     ///
     /// Returns `None` unless [`Conic::classify`] gives `Circle` or `Ellipse`.
+    ///
+    /// Solved here: `kurbo::Ellipse` is built from a centre, radii and rotation (or an
+    /// affine map) and has no implicit equation to start from.
     pub fn ellipse_params(&self) -> Option<EllipseParams> {
         if !matches!(self.classify(), CurveKind::Circle | CurveKind::Ellipse) {
             return None;

@@ -68,10 +68,9 @@ pub(super) fn ellipse_conic(c: Point, rx: f64, ry: f64, th: f64, scale: f64) -> 
     )
 }
 
+/// The point of parameter `phi` of the ellipse with centre `c`, radii `rx, ry`, rotation `th`.
 pub(super) fn ellipse_point(c: Point, rx: f64, ry: f64, th: f64, phi: f64) -> Point {
-    let v = Vec2::new(rx * phi.cos(), ry * phi.sin());
-    let (s, co) = th.sin_cos();
-    c + Vec2::new(co * v.x - s * v.y, s * v.x + co * v.y)
+    Arc::new(c, (rx, ry), phi, 0.0, th).eval(0.0)
 }
 
 pub(super) fn round_conic(k: Conic) -> Conic {
