@@ -12,48 +12,13 @@ pub struct Pixel {
     pub y: i32,
 }
 
-/// A fast hasher for [`Pixel`] keys (the multiplicative mix of rustc's `FxHasher`): pixel
-/// sets and maps are built per added contour point, where SipHash's resistance to chosen
-/// keys buys nothing.
-#[derive(Clone, Copy, Default)]
-pub(crate) struct PixelHasher(u64);
+/// A hash set of pixels with rustc's `FxHasher` (`rustc-hash`): pixel sets and maps are
+/// built per added contour point, where SipHash's resistance to chosen keys buys nothing.
+/// Nothing depends on their iteration order (what is read out of them is sorted first).
+pub(crate) type PixelSet = rustc_hash::FxHashSet<Pixel>;
 
-impl std::hash::Hasher for PixelHasher {
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(u64::from(b));
-        }
-    }
-
-    #[inline]
-    fn write_u32(&mut self, v: u32) {
-        self.write_u64(u64::from(v));
-    }
-
-    #[inline]
-    fn write_i32(&mut self, v: i32) {
-        self.write_u64(u64::from(v as u32));
-    }
-
-    #[inline]
-    fn write_u64(&mut self, v: u64) {
-        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    #[inline]
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-/// A hash set of pixels with [`PixelHasher`].
-pub(crate) type PixelSet =
-    std::collections::HashSet<Pixel, std::hash::BuildHasherDefault<PixelHasher>>;
-
-/// A hash map from pixels with [`PixelHasher`].
-pub(crate) type PixelMap<V> =
-    std::collections::HashMap<Pixel, V, std::hash::BuildHasherDefault<PixelHasher>>;
+/// A hash map from pixels with rustc's `FxHasher` (see [`PixelSet`]).
+pub(crate) type PixelMap<V> = rustc_hash::FxHashMap<Pixel, V>;
 
 impl Pixel {
     /// The pixel at column `x`, row `y`.

@@ -108,8 +108,11 @@ fn certificates_and_maximality_on_every_sample() {
 
 #[test]
 fn cli_writes_json_and_picture() {
-    let dir = std::env::temp_dir().join(format!("layertrace-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = tempfile::Builder::new()
+        .prefix("layertrace-cli-")
+        .tempdir()
+        .unwrap();
+    let dir = tmp.path();
     let (json, png) = (dir.join("g.json"), dir.join("g.png"));
     let out = Command::new(env!("CARGO_BIN_EXE_layertrace"))
         .args([
@@ -136,7 +139,7 @@ fn cli_writes_json_and_picture() {
     assert_eq!(v["contours"].as_array().unwrap().len(), 3);
     let img = image::open(&png).unwrap();
     assert!(img.width() >= 110 * 4);
-    std::fs::remove_dir_all(&dir).unwrap();
+    tmp.close().unwrap();
 }
 
 /// Every piece is described by an exact certificate, so its pixels (with its LEFT outliers)
@@ -147,7 +150,11 @@ fn cli_writes_json_and_picture() {
 /// circle pieces and 524 of 2349 conic pieces; on every conic piece of the comb below.)
 #[test]
 fn largest_margin_direction_for_every_piece() {
-    let comb = std::env::temp_dir().join(format!("layertrace-comb-{}.png", std::process::id()));
+    let tmp = tempfile::Builder::new()
+        .prefix("layertrace-comb-")
+        .tempdir()
+        .unwrap();
+    let comb = tmp.path().join("comb.png");
     image::GrayImage::from_fn(400, 400, |x, y| {
         let ink = (10..390).contains(&x)
             && ((10..60).contains(&y) || ((10..390).contains(&y) && x % 40 < 20));

@@ -2,18 +2,19 @@
 //! `--max-memory`, and a memory-limited run that must end with a message, never an abort.
 
 use std::io::{Cursor, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::Duration;
 
 const BIN: &str = env!("CARGO_BIN_EXE_layertrace");
 const SAMPLE: &str = "samples/glyph_g_liberationserif_cap120.png";
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("layertrace-load-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh folder of its own (random name, removed when dropped, even when the test fails).
+fn scratch(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("layertrace-load-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// Runs the CLI with `stdin` as standard input (written from another thread, so that a child
@@ -70,7 +71,8 @@ fn jpeg(width: u32, height: u32) -> Vec<u8> {
 
 #[test]
 fn stdin_and_pipes_read_like_files() {
-    let dir = scratch("stdin");
+    let tmp = scratch("stdin");
+    let dir = tmp.path();
     let svg = |n: &str| dir.join(n).to_string_lossy().into_owned();
     let bytes = std::fs::read(SAMPLE).unwrap();
     let from_file = run(&[SAMPLE, "-o", &svg("file.svg"), "-q"], None);
@@ -113,7 +115,8 @@ fn stdin_beyond_the_bound_is_refused() {
 
 #[test]
 fn fifo_without_writer_fails_at_once() {
-    let dir = scratch("fifo");
+    let tmp = scratch("fifo");
+    let dir = tmp.path();
     let fifo = dir.join("in.png");
     let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
     assert!(made.success());
@@ -144,7 +147,8 @@ fn fifo_without_writer_fails_at_once() {
 
 #[test]
 fn truncated_jpeg_is_an_error() {
-    let dir = scratch("jpeg");
+    let tmp = scratch("jpeg");
+    let dir = tmp.path();
     let good = jpeg(200, 140);
     let p = |n: &str| dir.join(n).to_string_lossy().into_owned();
     std::fs::write(p("good.jpg"), &good).unwrap();
@@ -173,7 +177,8 @@ fn sof_dimensions_at(jpeg: &[u8]) -> usize {
 
 #[test]
 fn forged_jpeg_header_is_refused_before_allocating() {
-    let dir = scratch("forged");
+    let tmp = scratch("forged");
+    let dir = tmp.path();
     let mut j = jpeg(64, 48);
     assert!(j.len() < 8000, "{} bytes", j.len());
     let at = sof_dimensions_at(&j);
@@ -237,7 +242,8 @@ fn large_rgba16_png(path: &Path) {
 
 #[test]
 fn large_image_under_address_space_limit() {
-    let dir = scratch("ulimit");
+    let tmp = scratch("ulimit");
+    let dir = tmp.path();
     let png = dir.join("rgba16.png");
     large_rgba16_png(&png);
     // 300 MB of address space: streamed, the image needs its 2 MB mask; decoded whole, it
@@ -263,7 +269,6 @@ fn large_image_under_address_space_limit() {
         .output()
         .unwrap();
     assert_fails_with(&out, "--max-memory");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Tiny contours by the hundred thousand (a one-pixel checkerboard): the work after tracing
@@ -271,7 +276,8 @@ fn large_image_under_address_space_limit() {
 /// which decoding (90 KB of grey) is far below; no output is written.
 #[test]
 fn work_after_tracing_is_checked_against_max_memory() {
-    let dir = scratch("checker");
+    let tmp = scratch("checker");
+    let dir = tmp.path();
     let img = image::GrayImage::from_fn(300, 300, |x, y| {
         image::Luma([if (x + y) % 2 == 0 { 0 } else { 255 }])
     });
@@ -288,5 +294,5 @@ fn work_after_tracing_is_checked_against_max_memory() {
     let out = run(&[p, "-o", s, "-q"], None);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert!(svg.exists());
-    std::fs::remove_dir_all(&dir).unwrap();
+    tmp.close().unwrap();
 }

@@ -5,30 +5,15 @@ use layertrace::{
     decompose, decomposition_json, load_path, svg_document, trace, Convention, JsonHeader,
     LoadOptions, Model, OutlierRule, SvgOptions,
 };
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("layertrace-rob-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// PNG's CRC-32 (to forge a valid header).
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut c = !0u32;
-    for &b in bytes {
-        c ^= u32::from(b);
-        for _ in 0..8 {
-            c = if c & 1 == 1 {
-                0xEDB8_8320 ^ (c >> 1)
-            } else {
-                c >> 1
-            };
-        }
-    }
-    !c
+/// A fresh folder of its own (random name, removed when dropped, even when the test fails).
+fn scratch(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("layertrace-rob-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// Runs the CLI, returns (exit code, stderr).
@@ -45,7 +30,8 @@ fn cli(args: &[&str]) -> (i32, String) {
 
 #[test]
 fn bad_inputs_fail_cleanly() {
-    let dir = scratch("bad");
+    let tmp = scratch("bad");
+    let dir = tmp.path();
     let d = |n: &str| dir.join(n).to_string_lossy().into_owned();
     let good = std::fs::read("samples/sil_horse_skimage.png").unwrap();
     std::fs::write(d("truncated.png"), &good[..good.len() / 3]).unwrap();
@@ -57,7 +43,7 @@ fn bad_inputs_fail_cleanly() {
     let mut huge = good.clone();
     huge[16..20].copy_from_slice(&100_000u32.to_be_bytes());
     huge[20..24].copy_from_slice(&100_000u32.to_be_bytes());
-    let crc = crc32(&huge[12..29]);
+    let crc = crc32fast::hash(&huge[12..29]);
     huge[29..33].copy_from_slice(&crc.to_be_bytes());
     std::fs::write(d("huge.png"), &huge).unwrap();
     let json = d("out.json");
@@ -118,12 +104,13 @@ fn bad_inputs_fail_cleanly() {
         cli(&["samples/syn_tiny_blobs.png", "--threshold", "300"]).0,
         2
     );
-    std::fs::remove_dir_all(&dir).unwrap();
+    tmp.close().unwrap();
 }
 
 #[test]
 fn blank_and_full_images() {
-    let dir = scratch("blank");
+    let tmp = scratch("blank");
+    let dir = tmp.path();
     let white = image::GrayImage::from_pixel(7, 5, image::Luma([255]));
     let black = image::GrayImage::from_pixel(7, 5, image::Luma([0]));
     white.save(dir.join("white.png")).unwrap();
@@ -140,7 +127,7 @@ fn blank_and_full_images() {
         let (code, err) = cli(&[&path, "--json", &out]);
         assert_eq!(code, 0, "{err}");
     }
-    std::fs::remove_dir_all(&dir).unwrap();
+    tmp.close().unwrap();
 }
 
 fn outputs_with_threads(path: &str, model: Model, threads: usize) -> String {
@@ -186,8 +173,8 @@ fn deterministic_across_runs_and_threads() {
 #[cfg(target_os = "linux")]
 #[test]
 fn output_to_redirected_stdout_appends() {
-    let dir = std::env::temp_dir().join(format!("layertrace-stdout-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = scratch("stdout");
+    let dir = tmp.path();
     let out = dir.join("out.svg");
     std::fs::write(&out, "HEAD\n").unwrap();
     let file = std::fs::OpenOptions::new().append(true).open(&out).unwrap();
@@ -209,5 +196,5 @@ fn output_to_redirected_stdout_appends() {
         &text[..text.len().min(80)]
     );
     assert!(text.trim_end().ends_with("</svg>"));
-    std::fs::remove_dir_all(&dir).unwrap();
+    tmp.close().unwrap();
 }

@@ -184,8 +184,11 @@ fn cli(args: &[&str]) -> (u64, String) {
 
 #[test]
 fn cli_adaptive_and_turdsize_give_far_fewer_contours_than_otsu() {
-    let dir = std::env::temp_dir().join(format!("layertrace-scan-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = tempfile::Builder::new()
+        .prefix("layertrace-scan-")
+        .tempdir()
+        .unwrap();
+    let dir = tmp.path();
     let (svg_otsu, svg_scan) = (dir.join("otsu.svg"), dir.join("scan.svg"));
     let (otsu, _) = cli(&["--threshold", "otsu", "-o", svg_otsu.to_str().unwrap()]);
     let (scan, err) = cli(&[
@@ -207,7 +210,7 @@ fn cli_adaptive_and_turdsize_give_far_fewer_contours_than_otsu() {
     let line = format!("cleaning: {cleaned}");
     assert!(err.lines().any(|l| l == line), "{line:?} not in {err}");
     assert!(line.contains("components and") && line.ends_with("of at most 4 px"));
-    std::fs::remove_dir_all(&dir).unwrap();
+    tmp.close().unwrap();
 }
 
 #[test]

@@ -417,7 +417,7 @@ pub fn threshold_image(img: &DynamicImage, opts: &LoadOptions) -> Loaded {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bitmap::tests::{crc32, fixed};
+    use crate::bitmap::tests::fixed;
     use image::{ImageBuffer, Luma};
 
     fn png_bytes(img: &DynamicImage) -> Vec<u8> {
@@ -504,12 +504,12 @@ mod tests {
         bytes.truncate(33); // signature + IHDR chunk
         bytes[16..20].copy_from_slice(&100_000u32.to_be_bytes());
         bytes[20..24].copy_from_slice(&100_000u32.to_be_bytes());
-        let crc = crc32(&bytes[12..29]);
+        let crc = crc32fast::hash(&bytes[12..29]);
         bytes[29..33].copy_from_slice(&crc.to_be_bytes());
         // An empty IDAT chunk, so that the header can be read completely.
         bytes.extend_from_slice(&0u32.to_be_bytes());
         bytes.extend_from_slice(b"IDAT");
-        bytes.extend_from_slice(&crc32(b"IDAT").to_be_bytes());
+        bytes.extend_from_slice(&crc32fast::hash(b"IDAT").to_be_bytes());
         let e = load_memory(&bytes, &LoadOptions::default()).unwrap_err();
         assert!(
             matches!(

@@ -53,6 +53,12 @@ pub(super) fn flat_arc(
 }
 
 /// Exact elliptical arc(s) from `from` to `to`, going the way the guide says.
+///
+/// The point of parameter φ (`at`) is what `kurbo::Arc::new(centre, radii, φ, 0.0,
+/// θ).eval(0.0)` computes, with the same sums: that swap gave byte-identical SVG and JSON on
+/// every sample, but the whole sample run measured 1–4% slower in alternating runs, both
+/// orders (6.58 → 6.83 s, 6.67 → 6.86 s user), most likely code layout since `at` runs once
+/// per full turn; not worth four lines. Its inverse (`angle`) has no kurbo counterpart.
 pub(super) fn ellipse_path(
     conic: &Conic,
     from: Point,
@@ -189,19 +195,30 @@ mod tests {
     use crate::curve::test_util::*;
     use crate::curve::{level_curve_path, project, CurveKind, Polynomial};
     use kurbo::{Arc, ParamCurve, PathEl};
+    use proptest::prelude::*;
 
-    #[test]
-    fn ellipse_arcs_go_the_guided_way() {
-        let mut rng = Rng(0x0bad_cafe_dead_f00d);
-        let mut worst: f64 = 0.0;
-        for case in 0..400 {
-            let centre = Point::new(rng.range(20.0, 300.0), rng.range(20.0, 300.0));
-            let (rx, ry) = (rng.range(3.0, 60.0), rng.range(3.0, 60.0));
-            let th = rng.range(-PI, PI);
-            let mut k = ellipse_conic(centre, rx, ry, th, rx * ry);
-            if case % 4 == 0 {
-                k = round_conic(ellipse_conic(centre, rx, ry, th, 1e6));
-            }
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// An arc of a random ellipse (a quarter of them with the rounded integer equation
+        /// of the exporter), either way round, with a pixel-like guide up to 0.4 px off the
+        /// curve: one exact arc, of the sweep intended, on the conic, near the guide.
+        #[test]
+        fn ellipse_arcs_go_the_guided_way(
+            centre in (20.0..300.0f64, 20.0..300.0f64).prop_map(|(x, y)| Point::new(x, y)),
+            (rx, ry) in (3.0..60.0f64, 3.0..60.0f64),
+            th in -PI..PI,
+            rounded in proptest::bool::weighted(0.25),
+            phi0 in -PI..PI,
+            magnitude in 0.1..TAU - 0.1,
+            positive in proptest::bool::ANY,
+            noise in proptest::collection::vec(-0.4..0.4f64, 200),
+        ) {
+            let k = if rounded {
+                round_conic(ellipse_conic(centre, rx, ry, th, 1e6))
+            } else {
+                ellipse_conic(centre, rx, ry, th, rx * ry)
+            };
             let poly = Polynomial::from(k);
             // The intended arc, in the recovered parametrisation (robust to the rounding).
             let EllipseParams {
@@ -209,9 +226,7 @@ mod tests {
                 radii: r,
                 rotation: a,
             } = k.ellipse_params().unwrap();
-            let phi0 = rng.range(-PI, PI);
-            let magnitude = rng.range(0.1, TAU - 0.1);
-            let sweep = if case % 2 == 0 { magnitude } else { -magnitude };
+            let sweep = if positive { magnitude } else { -magnitude };
             let from = ellipse_point(c, r.x, r.y, a, phi0);
             let to = ellipse_point(c, r.x, r.y, a, phi0 + sweep);
             // Guide: pixel-like points along the intended arc, up to 0.4 px off the curve.
@@ -220,13 +235,19 @@ mod tests {
                 .map(|i| {
                     let phi = phi0 + sweep * (i as f64 + 0.5) / n_guide as f64;
                     let p = ellipse_point(c, r.x, r.y, a, phi);
-                    let n = poly.gradient(p).normalize();
-                    p + n * rng.range(-0.4, 0.4)
+                    p + poly.gradient(p).normalize() * noise[i]
                 })
                 .collect();
             let (cmds, err) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
-            assert_eq!(err, 0.0);
-            assert_eq!(cmds.len(), 1);
+            if let [PathCommand::Line(end)] = cmds[..] {
+                // A short arc of a large ellipse (0.1 rad of radius 27) is drawn as its
+                // chord when that is within the tolerance (`flat_arc`).
+                prop_assert_eq!(end, to);
+                prop_assert!(err > 0.0 && err <= 0.05, "chord error {}", err);
+                return Ok(());
+            }
+            prop_assert_eq!(err, 0.0);
+            prop_assert_eq!(cmds.len(), 1);
             let PathCommand::Arc(svg) = cmds[0] else {
                 panic!("expected an arc, got {cmds:?}");
             };
@@ -239,16 +260,13 @@ mod tests {
             );
             for i in 0..=64 {
                 let p = arc.eval(i as f64 / 64.0);
-                let d = poly.distance_estimate(p);
-                worst = worst.max(d);
-                assert_le(d, 1e-6, "arc sample on the conic");
+                assert_le(poly.distance_estimate(p), 1e-6, "arc sample on the conic");
             }
             let samples = sample_path(from, &cmds, 256);
             for g in &guide {
                 assert_le(min_distance(*g, &samples), 0.45, "guide near the arc");
             }
         }
-        eprintln!("ellipse arcs: worst |f|/|grad f| of arc samples {worst:e}");
     }
 
     #[test]

@@ -241,6 +241,7 @@ mod tests {
     use crate::curve::test_util::*;
     use crate::curve::{level_curve_path, Polynomial};
     use kurbo::{Arc, Point, Vec2};
+    use proptest::prelude::*;
     use std::f64::consts::{PI, TAU};
 
     #[test]
@@ -338,9 +339,10 @@ mod tests {
         }
     }
 
-    /// Pixel-like guide: points of the curve pushed up to `noise` along the normal, plus
-    /// points overshooting both ends by half a pixel.
-    fn noisy_guide(poly: &Polynomial, pts: &[Point], noise: f64, rng: &mut Rng) -> Vec<Point> {
+    /// Pixel-like guide: points of the curve pushed along the normal by `noise` times the
+    /// offsets (in [−1, 1], taken in turn), plus points overshooting both ends by half a
+    /// pixel.
+    fn noisy_guide(poly: &Polynomial, pts: &[Point], noise: f64, offsets: &[f64]) -> Vec<Point> {
         let mut out = Vec::new();
         let first = pts[0];
         let last = pts[pts.len() - 1];
@@ -351,9 +353,9 @@ mod tests {
             -t0
         };
         out.push(first - t0 * 0.5);
-        for &p in &pts[1..pts.len() - 1] {
+        for (k, &p) in pts[1..pts.len() - 1].iter().enumerate() {
             let n = poly.gradient(p).normalize();
-            out.push(p + n * rng.range(-noise, noise));
+            out.push(p + n * (noise * offsets[k % offsets.len()]));
         }
         let t1 = unit_tangent(poly, last).unwrap();
         let t1 = if t1.dot(last - pts[pts.len() - 2]) > 0.0 {
@@ -365,60 +367,91 @@ mod tests {
         out
     }
 
-    #[test]
-    fn sextic_far_from_origin_with_noisy_guides() {
-        // x⁶ + y⁶ = 10⁶ around (800.5, 600.5): absolute coefficients up to ~1e18.
-        let origin = Point::new(800.5, 600.5);
-        let r = 10.0f64;
-        let poly =
-            Polynomial::from_local(&[(6, 0), (0, 6)], &[1.0, 1.0], origin, r.powi(6)).unwrap();
-        assert_eq!(poly.degree(), 6);
-        let at = |phi: f64| {
-            let (s, c) = phi.sin_cos();
-            let k = r / (c.powi(6) + s.powi(6)).powf(1.0 / 6.0);
-            origin + Vec2::new(k * c, k * s)
-        };
-        let mut rng = Rng(0x5eed_5eed_5eed_5eed);
-        for (phi0, sweep) in [(0.2, 2.0), (0.2, -3.0), (-1.0, TAU)] {
-            let exact: Vec<Point> = (0..=60)
-                .map(|j| at(phi0 + sweep * j as f64 / 60.0))
-                .collect();
-            let guide = noisy_guide(&poly, &exact, 0.45, &mut rng);
-            let (cmds, measured) = check_fit(&poly, exact[0], exact[60], &guide, 0.05);
-            let samples = sample_path(exact[0], &cmds, 64);
-            for p in &exact {
-                assert_le(min_distance(*p, &samples), 0.05, "intended part covered");
+    /// Offsets for [`noisy_guide`].
+    fn offsets() -> impl Strategy<Value = Vec<f64>> {
+        proptest::collection::vec(-1.0..1.0f64, 64)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(32))]
+
+        #[test]
+        fn sextic_far_from_origin_with_noisy_guides(offsets in offsets()) {
+            // x⁶ + y⁶ = 10⁶ around (800.5, 600.5): absolute coefficients up to ~1e18.
+            let origin = Point::new(800.5, 600.5);
+            let r = 10.0f64;
+            let poly =
+                Polynomial::from_local(&[(6, 0), (0, 6)], &[1.0, 1.0], origin, r.powi(6)).unwrap();
+            prop_assert_eq!(poly.degree(), 6);
+            let at = |phi: f64| {
+                let (s, c) = phi.sin_cos();
+                let k = r / (c.powi(6) + s.powi(6)).powf(1.0 / 6.0);
+                origin + Vec2::new(k * c, k * s)
+            };
+            for (phi0, sweep) in [(0.2, 2.0), (0.2, -3.0), (-1.0, TAU)] {
+                let exact: Vec<Point> = (0..=60)
+                    .map(|j| at(phi0 + sweep * j as f64 / 60.0))
+                    .collect();
+                let guide = noisy_guide(&poly, &exact, 0.45, &offsets);
+                let (cmds, _) = check_fit(&poly, exact[0], exact[60], &guide, 0.05);
+                let samples = sample_path(exact[0], &cmds, 64);
+                for p in &exact {
+                    assert_le(min_distance(*p, &samples), 0.05, "intended part covered");
+                }
             }
-            eprintln!(
-                "sextic {phi0} {sweep}: {} cubics, max distance {measured:e}",
-                cmds.len()
-            );
+        }
+
+        #[test]
+        fn noisy_guides_on_cubic_and_ellipse(offsets in offsets()) {
+            let (poly, at) = cubic_curve();
+            let exact: Vec<Point> = (0..=50).map(|j| at(-2.0 + 5.0 * j as f64 / 50.0)).collect();
+            let guide = noisy_guide(&poly, &exact, 0.45, &offsets);
+            check_fit(&poly, exact[0], exact[50], &guide, 0.05);
+            // Ellipse, small and large arcs, guide overshooting both ends.
+            let centre = Point::new(30.0, 20.0);
+            let k = ellipse_conic(centre, 12.0, 5.0, 0.3, 60.0);
+            let epoly = Polynomial::from(k);
+            for sweep in [0.4, -0.4, 4.0, -4.0] {
+                let exact: Vec<Point> = (0..=30)
+                    .map(|j| ellipse_point(centre, 12.0, 5.0, 0.3, 1.0 + sweep * j as f64 / 30.0))
+                    .collect();
+                let guide = noisy_guide(&epoly, &exact, 0.45, &offsets);
+                let (cmds, _) =
+                    level_curve_path(&epoly, exact[0], exact[30], &guide, 0.05).unwrap();
+                let PathCommand::Arc(svg) = cmds[0] else {
+                    panic!("{cmds:?}")
+                };
+                let arc = Arc::from_svg_arc(&svg).unwrap();
+                assert_close(arc.sweep_angle, sweep, 1e-6, "noisy guide sweep");
+            }
         }
     }
 
-    #[test]
-    fn noisy_guides_on_cubic_and_ellipse() {
-        let mut rng = Rng(0x1111_2222_3333_4444);
-        let (poly, at) = cubic_curve();
-        let exact: Vec<Point> = (0..=50).map(|j| at(-2.0 + 5.0 * j as f64 / 50.0)).collect();
-        let guide = noisy_guide(&poly, &exact, 0.45, &mut rng);
-        let (_, measured) = check_fit(&poly, exact[0], exact[50], &guide, 0.05);
-        eprintln!("cubic, noisy guide: max distance {measured:e}");
-        // Ellipse, small and large arcs, guide overshooting both ends.
-        let centre = Point::new(30.0, 20.0);
-        let k = ellipse_conic(centre, 12.0, 5.0, 0.3, 60.0);
-        let epoly = Polynomial::from(k);
-        for sweep in [0.4, -0.4, 4.0, -4.0] {
-            let exact: Vec<Point> = (0..=30)
-                .map(|j| ellipse_point(centre, 12.0, 5.0, 0.3, 1.0 + sweep * j as f64 / 30.0))
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Arcs of random hyperbolas (traced and fitted by cubics), at tolerances from 0.01
+        /// to 0.2 px, with a guide of pixel-like points up to 0.45 px off the curve: the
+        /// path ends where asked, its stated error and the distance measured on its samples
+        /// are within the tolerance, and the guide's projections lie near it ([`check_fit`]).
+        #[test]
+        fn hyperbola_fit_error_within_tolerance(
+            (a, b) in (3.0..30.0f64, 3.0..30.0f64),
+            th in -PI..PI,
+            centre in (50.0..150.0f64, 50.0..150.0f64).prop_map(|(x, y)| Point::new(x, y)),
+            sign in prop_oneof![Just(1.0), Just(-1.0)],
+            t0 in -2.0..1.0f64,
+            length in 0.3..2.0f64,
+            tolerance in 0.01..0.2f64,
+            offsets in offsets(),
+        ) {
+            let (poly, at) = rotated_hyperbola(a, b, th, centre);
+            let t1 = t0 + length;
+            let exact: Vec<Point> = (0..=40)
+                .map(|j| at(sign, t0 + length * j as f64 / 40.0))
                 .collect();
-            let guide = noisy_guide(&epoly, &exact, 0.45, &mut rng);
-            let (cmds, _) = level_curve_path(&epoly, exact[0], exact[30], &guide, 0.05).unwrap();
-            let PathCommand::Arc(svg) = cmds[0] else {
-                panic!("{cmds:?}")
-            };
-            let arc = Arc::from_svg_arc(&svg).unwrap();
-            assert_close(arc.sweep_angle, sweep, 1e-6, "noisy guide sweep");
+            let guide = noisy_guide(&poly, &exact, 0.45, &offsets);
+            check_fit(&poly, at(sign, t0), at(sign, t1), &guide, tolerance);
         }
     }
 }

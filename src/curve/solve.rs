@@ -219,55 +219,82 @@ mod tests {
     use super::*;
     use crate::curve::test_util::*;
     use crate::curve::Conic;
+    use proptest::prelude::*;
 
-    /// The closed-form bound on conics: a point of the curve (so at least the distance to
-    /// the curve) and, for points near the curve, within second order of that distance.
-    #[test]
-    fn conic_distance_bound() {
-        let mut rng = Rng(0x0dd_b1a5_ed5e_ed01);
-        let mut checked = 0;
-        for _ in 0..300 {
-            let k = Conic::new(
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-20.0, 20.0),
-                rng.range(-20.0, 20.0),
-                rng.range(-100.0, 100.0),
-            );
-            let poly = Polynomial::from(k);
-            for i in 0..10 {
-                let mut p = Point::new(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
-                if i % 2 == 1 {
-                    // Near the curve: a point of it moved along the normal.
-                    let Some(q) = project(&poly, p, 10.0) else {
-                        continue;
-                    };
-                    let n = poly.gradient(q).normalize();
-                    p = q + n * rng.range(-0.05, 0.05);
-                }
-                let Some(on) = project(&poly, p, 3.0) else {
-                    continue;
-                };
-                let d = (on - p).hypot();
-                let Some(bound) = distance_bound(&poly, p, 10.0) else {
-                    continue;
-                };
-                assert!(
-                    bound >= d - 1e-9,
-                    "bound {bound} below the distance {d} at {p:?}"
-                );
-                if d < 0.05 {
-                    checked += 1;
-                    assert_le(
-                        bound - d,
-                        1e-3,
-                        "bound close to the distance near the curve",
-                    );
+    /// A conic with a quadratic part in [−1, 1]³ and a linear part in [−20, 20]², its
+    /// constant chosen so that it passes through a point of [−15, 15]²; with that point.
+    fn conic_through_a_point() -> impl Strategy<Value = (Polynomial, Point)> {
+        (
+            (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64),
+            (-20.0..20.0f64, -20.0..20.0f64),
+            (-15.0..15.0f64, -15.0..15.0f64),
+        )
+            .prop_map(|((a, b, c), (d, e), (x, y))| {
+                let f = -(a * x * x + b * x * y + c * y * y + d * x + e * y);
+                (
+                    Polynomial::from(Conic::new(a, b, c, d, e, f)),
+                    Point::new(x, y),
+                )
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// A point up to 3 px from a point of the curve: its projection, when found, lies on
+        /// the curve, within the distance asked; where that distance is at most half the
+        /// radius of curvature there, it is the foot of a normal through the point, and no
+        /// farther than the closed-form bound (itself the distance to a point of the curve).
+        /// Farther out the projection is only a local one: 2.46 px out from the sharp vertex
+        /// of an ellipse of radii 3.0 and 2.7 (radius of curvature 2.35) the slide along the
+        /// tangent stopped 0.012 px short of the foot, and 2 px from another conic it found
+        /// a point 1.965 px away where the closed form found one at 1.949 px.
+        #[test]
+        fn projection_lands_on_the_curve(
+            (poly, on) in conic_through_a_point(),
+            (dx, dy) in (-3.0..3.0f64, -3.0..3.0f64),
+        ) {
+            let p = on + Vec2::new(dx, dy);
+            if let Some(q) = project(&poly, p, 3.0) {
+                let d = (q - p).hypot();
+                assert_le(d, 3.0, "within the distance asked");
+                assert_le(poly.distance_estimate(q), 1e-7, "|f| / |grad f| at the projection");
+                let t = unit_tangent(&poly, q).expect("a tangent at the projection");
+                // Curvature |f_xx f_y² − 2 f_xy f_x f_y + f_yy f_x²| / |∇f|³ of the conic.
+                let k = poly.as_conic().unwrap();
+                let g = poly.gradient(q);
+                let curvature = (2.0 * k.a * g.y * g.y - 2.0 * k.b * g.x * g.y
+                    + 2.0 * k.c * g.x * g.x)
+                    .abs()
+                    / g.hypot().powi(3);
+                if d * curvature <= 0.5 {
+                    assert_le((p - q).dot(t).abs(), 1e-6 * (1.0 + d), "p − q along the normal");
+                    if let Some(bound) = distance_bound(&poly, p, 10.0) {
+                        assert_le(d, bound + 1e-9, "projection no farther than the bound");
+                    }
                 }
             }
         }
-        assert!(checked > 20, "only {checked} points near the curves");
+
+        /// A point of the curve moved by `delta` along the normal: the projection is found,
+        /// on the curve, no farther than `|delta|` (the point it came from is that far), and
+        /// the closed-form bound exceeds that distance by at most 1e-3.
+        #[test]
+        fn projection_of_a_point_near_the_curve(
+            (poly, on) in conic_through_a_point(),
+            delta in -0.05..0.05f64,
+        ) {
+            let g = poly.gradient(on);
+            prop_assume!(g.hypot() >= 1e-3);
+            let p = on + g.normalize() * delta;
+            let q = project(&poly, p, 3.0).expect("a point of the curve is that near");
+            let d = (q - p).hypot();
+            assert_le(poly.distance_estimate(q), 1e-7, "|f| / |grad f| at the projection");
+            assert_le(d, delta.abs() * (1.0 + 1e-9) + 1e-12, "no farther than |delta|");
+            let bound = distance_bound(&poly, p, 10.0).expect("a bound near the curve");
+            assert_le(d, bound + 1e-9, "bound at least the distance");
+            assert_le(bound - d, 1e-3, "bound close to the distance near the curve");
+        }
     }
 
     #[test]

@@ -6,7 +6,7 @@ use super::path::{ENDPOINT_MAX_DISTANCE, GUIDE_MAX_DISTANCE};
 use super::polynomial::Polynomial;
 use super::solve::{conic_foot, newton_to_curve, project, unit_tangent};
 use crate::pixel::{Pixel, PixelMap};
-use kurbo::{Point, Vec2};
+use kurbo::{Line, ParamCurveNearest, Point, Vec2};
 use std::f64::consts::PI;
 
 /// Largest step (in pixels) of the numerical tracer used by
@@ -148,16 +148,10 @@ fn guide_length(from: Point, guide: &[Point], to: Point) -> f64 {
     len
 }
 
-/// Distance from `p` to the segment `[a, b]`.
+/// Distance from `p` to the segment `[a, b]` (a point when `a == b`), by kurbo's nearest
+/// point of a [`Line`].
 pub(super) fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let l2 = ab.hypot2();
-    let t = if l2 > 0.0 {
-        ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + ab * t)).hypot()
+    Line::new(a, b).nearest(p, 0.0).distance_sq.sqrt()
 }
 
 /// Marches along the curve from `from` to `to`, passing the projections of the guide points.

@@ -35,7 +35,7 @@ use super::OutlineOptions;
 use crate::bitmap::Band;
 use crate::contour::Contour;
 use crate::curve::PathCommand;
-use kurbo::{CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
+use kurbo::{CubicBez, Line, ParamCurve, ParamCurveDeriv, ParamCurveNearest, Point, Vec2};
 
 /// Largest total turn of a run of cubics merged into one.
 pub(crate) const MAX_RUN_TURN_DEGREES: f64 = 175.0;
@@ -103,16 +103,10 @@ fn flatten(c: &CubicBez, out: &mut Vec<Point>) {
     }
 }
 
-/// Distance from `p` to the segment `a b`.
+/// Distance from `p` to the segment `a b` (a point when `a == b`), by kurbo's nearest point
+/// of a [`Line`].
 fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let d = b - a;
-    let l2 = d.hypot2();
-    let t = if l2 > 0.0 {
-        ((p - a).dot(d) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + d * t)).hypot()
+    Line::new(a, b).nearest(p, 0.0).distance_sq.sqrt()
 }
 
 /// The smooth outline of one contour (see the module documentation).

@@ -240,6 +240,7 @@ impl Simplex {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn int(v: i64) -> BigInt {
         BigInt::from(v)
@@ -316,23 +317,20 @@ mod tests {
         assert_eq!(s.solve(None), Status::Unbounded);
     }
 
-    /// Random programs: the optimum agrees with brute force over every basis (vertices).
-    #[test]
-    fn random_programs_agree_with_vertex_enumeration() {
-        let mut seed = 5u64;
-        let mut next = |range: i64| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 33) % (2 * range as u64 + 1)) as i64 - range
-        };
-        for _ in 0..40 {
-            // max c·x, A x ≤ b (slacks as the unit columns), 2 rows, 3 structural columns,
-            // A ≥ 0 with a positive entry in every column: bounded.
-            let b = [next(5).abs() + 1, next(5).abs() + 1];
-            let cols: Vec<([i64; 2], i64)> = (0..3)
-                .map(|_| ([next(3).abs() + 1, next(3).abs()], next(4)))
-                .collect();
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Random programs: the optimum agrees with brute force over every basis (vertices).
+        /// max c·x, A x ≤ b (slacks as the unit columns), 2 rows, 3 structural columns,
+        /// A ≥ 0 with a positive entry in every column: bounded.
+        #[test]
+        fn random_programs_agree_with_vertex_enumeration(
+            b in (1i64..=6, 1i64..=6).prop_map(|(x, y)| [x, y]),
+            cols in proptest::collection::vec(
+                ((1i64..=4, 0i64..=3).prop_map(|(x, y)| [x, y]), -4i64..=4),
+                3,
+            ),
+        ) {
             let mut s = Simplex::new(b.iter().map(|&v| int(v)).collect(), vec![int(0), int(0)]);
             for (a, c) in &cols {
                 s.add(column(a, *c));
@@ -360,8 +358,8 @@ mod tests {
                     best = Some(best.map_or(v.clone(), |b: BigRational| b.max(v)));
                 }
             }
-            assert_eq!(status, Status::Optimal);
-            assert_eq!(Some(s.objective()), best, "{b:?} {cols:?}");
+            prop_assert_eq!(status, Status::Optimal);
+            prop_assert_eq!(Some(s.objective()), best, "{:?} {:?}", b, cols);
         }
     }
 }

@@ -186,14 +186,3 @@ fn bad_sets_are_errors_naming_the_point() {
         r.layer().unwrap()
     ));
 }
-
-/// A small deterministic generator (a 64-bit LCG): integers in `-range..=range`.
-pub(super) fn rng(seed: u64) -> impl FnMut(i64) -> i64 {
-    let mut s = seed;
-    move |range| {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((s >> 33) % (2 * range as u64 + 1)) as i64 - range
-    }
-}

@@ -360,7 +360,7 @@ fn program(
 mod tests {
     use super::*;
     use crate::model::Model;
-    use crate::points::tests::rng;
+    use proptest::prelude::*;
 
     fn rational(n: i64, d: i64) -> BigRational {
         BigRational::new(n.into(), d.into())
@@ -389,22 +389,30 @@ mod tests {
         best.unwrap_or_else(BigRational::zero)
     }
 
-    #[test]
-    fn random_planar_sets_match_brute_force_for_lines() {
-        let basis = Model::Line.basis();
-        let mut next = rng(2014);
-        for round in 0..150 {
-            let count = 1 + next(12).unsigned_abs() as usize;
-            let (cx, cy) = (next(1000), next(1000));
-            let r = 1 + next(20).abs();
-            let points: Vec<Vec<i64>> = (0..count)
-                .map(|_| vec![cx + next(r), cy + next(r)])
-                .collect();
+    /// A centre in [−1000, 1000]², a radius in 1..=21 and 1 to 13 offsets within it.
+    fn planar_set() -> impl Strategy<Value = Vec<Vec<i64>>> {
+        (-1000i64..=1000, -1000i64..=1000, 1i64..=21).prop_flat_map(|(cx, cy, r)| {
+            proptest::collection::vec((-r..=r, -r..=r), 1..=13).prop_map(move |offsets| {
+                offsets
+                    .into_iter()
+                    .map(|(dx, dy)| vec![cx + dx, cy + dy])
+                    .collect()
+            })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(150))]
+
+        #[test]
+        fn random_planar_sets_match_brute_force_for_lines(points in planar_set()) {
+            let basis = Model::Line.basis();
             let t = thinnest(&basis, &points).unwrap();
-            assert_eq!(
-                t.thickness,
-                brute_force_line(&points),
-                "round {round}: {points:?} {:?}",
+            prop_assert_eq!(
+                &t.thickness,
+                &brute_force_line(&points),
+                "{:?} {:?}",
+                points,
                 t.layer
             );
         }
@@ -461,51 +469,56 @@ mod tests {
         }
     }
 
-    /// Digitized circles and conics: the layer holds every point (checked in `thinnest`
-    /// itself too), and no coefficient vector of a random family is thinner.
-    #[test]
-    fn no_random_direction_is_thinner_than_the_thinnest() {
-        let mut next = rng(7);
-        for model in [Model::Circle, Model::Conic, Model::Poly(3)] {
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(9))]
+
+        /// Digitized circles and conics: the layer holds every point (checked in `thinnest`
+        /// itself too), and no coefficient vector of a random family is thinner: near the
+        /// optimum (each coefficient times 50, plus −3..=3) or anywhere (plus −500..=500).
+        #[test]
+        fn no_random_direction_is_thinner_than_the_thinnest(
+            model in prop_oneof![Just(Model::Circle), Just(Model::Conic), Just(Model::Poly(3))],
+            (a, b) in (1i64..=4, 1i64..=4),
+            (cx, cy) in (-50i64..=50, -50i64..=50),
+            directions in proptest::collection::vec(
+                (proptest::bool::ANY, proptest::collection::vec(-500i64..=500, 10)),
+                300,
+            ),
+        ) {
             let basis = model.basis();
-            for _ in 0..3 {
-                let (a, b) = (next(3).abs() + 1, next(3).abs() + 1);
-                let (cx, cy) = (next(50), next(50));
-                let mut points = Vec::new();
-                for x in -12..=12 {
-                    for y in -12..=12 {
-                        let v = a * x * x + b * y * y + x * y;
-                        if (60..60 + 3 * (a + b)).contains(&v) {
-                            points.push(vec![x + cx, y + cy]);
-                        }
+            let mut points = Vec::new();
+            for x in -12..=12 {
+                for y in -12..=12 {
+                    let v = a * x * x + b * y * y + x * y;
+                    if (60..60 + 3 * (a + b)).contains(&v) {
+                        points.push(vec![x + cx, y + cy]);
                     }
                 }
-                let t = thinnest(&basis, &points).unwrap();
-                for p in &points {
-                    let v = t.layer.value(&basis, p).unwrap();
-                    assert!(t.layer.lower <= v && v <= t.layer.upper);
-                }
-                let lifted: Vec<Vec<BigInt>> = points
+            }
+            let t = thinnest(&basis, &points).unwrap();
+            for p in &points {
+                let v = t.layer.value(&basis, p).unwrap();
+                prop_assert!(t.layer.lower <= v && v <= t.layer.upper);
+            }
+            let lifted: Vec<Vec<BigInt>> = points
+                .iter()
+                .map(|p| lift_exact(&basis, p).unwrap())
+                .collect();
+            for (near, offsets) in directions {
+                let c: Vec<BigInt> = t
+                    .layer
+                    .coefficients
                     .iter()
-                    .map(|p| lift_exact(&basis, p).unwrap())
+                    .zip(offsets)
+                    .map(|(x, o)| x * 50 + if near { o % 4 } else { o })
                     .collect();
-                for _ in 0..300 {
-                    // Near the optimum and at random.
-                    let spread = if next(1) > 0 { 3 } else { 500 };
-                    let c: Vec<BigInt> = t
-                        .layer
-                        .coefficients
-                        .iter()
-                        .map(|x| x * 50 + next(spread))
-                        .collect();
-                    let values: Vec<BigInt> = lifted.iter().map(|f| dot(&c, f)).collect();
-                    let norm = c.iter().map(BigInt::abs).max().unwrap();
-                    if norm.is_zero() {
-                        continue;
-                    }
-                    let width = values.iter().max().unwrap() - values.iter().min().unwrap();
-                    assert!(BigRational::new(width, norm) >= t.thickness, "{model}");
+                let values: Vec<BigInt> = lifted.iter().map(|f| dot(&c, f)).collect();
+                let norm = c.iter().map(BigInt::abs).max().unwrap();
+                if norm.is_zero() {
+                    continue;
                 }
+                let width = values.iter().max().unwrap() - values.iter().min().unwrap();
+                prop_assert!(BigRational::new(width, norm) >= t.thickness, "{}", model);
             }
         }
     }

@@ -214,32 +214,39 @@ pub(crate) fn evaluate(basis: &dyn Basis, coefficients: &[BigInt], p: &[i64]) ->
 mod tests {
     use super::*;
     use crate::model::Model;
-    use crate::points::tests::rng;
     use crate::recognize::Extremes;
+    use proptest::prelude::*;
 
-    /// For every built-in model: the absolute layer's value differs from the certificate's by
-    /// the same constant at every point, exactly (so the shifted bounds hold where the
-    /// certificate's do).
-    #[test]
-    fn translation_is_exact_for_every_model() {
-        let mut next = rng(7);
-        for model in [
-            Model::Line,
-            Model::Circle,
-            Model::Conic,
-            Model::Poly(3),
-            Model::Poly(6),
-            Model::Quadric3,
-            Model::Poly3(3),
-        ] {
-            let basis = model.basis();
-            let d = basis.point_dim();
-            for _ in 0..5 {
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(32))]
+
+        /// For every built-in model: the absolute layer's value differs from the
+        /// certificate's by the same constant at every point, exactly (so the shifted bounds
+        /// hold where the certificate's do).
+        #[test]
+        fn translation_is_exact_for_every_model(
+            origin in proptest::collection::vec(-1000i64..=1000, 3),
+            coefficients in proptest::collection::vec(-50i64..=50, 28),
+            lower in -1000i128..=1000,
+            offsets in proptest::collection::vec(proptest::collection::vec(-30i64..=30, 3), 20),
+        ) {
+            for model in [
+                Model::Line,
+                Model::Circle,
+                Model::Conic,
+                Model::Poly(3),
+                Model::Poly(6),
+                Model::Quadric3,
+                Model::Poly3(3),
+            ] {
+                let basis = model.basis();
+                let d = basis.point_dim();
+                prop_assert!(basis.dim() <= coefficients.len());
                 let cert = Certificate {
-                    origin: (0..d).map(|_| next(1000)).collect(),
-                    coefficients: (0..basis.dim()).map(|_| next(50)).collect(),
+                    origin: origin[..d].to_vec(),
+                    coefficients: coefficients[..basis.dim()].to_vec(),
                     extremes: Extremes {
-                        lower: i128::from(next(1000)),
+                        lower,
                         upper: 2000,
                         above: Some(3000),
                         below: None,
@@ -247,28 +254,27 @@ mod tests {
                 };
                 let layer = absolute(&basis, &cert).expect("built-in spans are closed");
                 let shift = BigInt::from(cert.extremes.lower) - &layer.lower;
-                assert_eq!(BigInt::from(cert.extremes.upper) - &layer.upper, shift);
-                assert_eq!(BigInt::from(3000) - layer.above.clone().unwrap(), shift);
-                assert_eq!(layer.below, None);
-                for _ in 0..20 {
-                    let p: Vec<i64> = cert.origin.iter().map(|o| o + next(30)).collect();
+                prop_assert_eq!(BigInt::from(cert.extremes.upper) - &layer.upper, shift.clone());
+                prop_assert_eq!(BigInt::from(3000) - layer.above.clone().unwrap(), shift.clone());
+                prop_assert_eq!(&layer.below, &None);
+                for o in &offsets {
+                    let p: Vec<i64> = cert.origin.iter().zip(o).map(|(c, o)| c + o).collect();
                     let local = cert.value(&basis, &p).unwrap();
                     let abs = evaluate(&basis, &layer.coefficients, &p).unwrap();
-                    assert_eq!(BigInt::from(local) - abs, shift, "{model} at {p:?}");
+                    prop_assert_eq!(BigInt::from(local) - abs, shift.clone(), "{} at {:?}", model, p);
                 }
             }
         }
-    }
 
-    #[test]
-    fn big_integer_evaluation_agrees_with_the_fast_path() {
-        let basis = Model::Poly(6).basis();
-        let coefficients: Vec<BigInt> = (0..basis.dim() as i64)
-            .map(|i| BigInt::from(i - 13))
-            .collect();
-        let mut next = rng(3);
-        for _ in 0..50 {
-            let p = [next(40), next(40)];
+        /// The fast (i64) evaluation of a degree-6 polynomial agrees with big integers.
+        #[test]
+        fn big_integer_evaluation_agrees_with_the_fast_path(
+            p in (-40i64..=40, -40i64..=40).prop_map(|(x, y)| [x, y]),
+        ) {
+            let basis = Model::Poly(6).basis();
+            let coefficients: Vec<BigInt> = (0..basis.dim() as i64)
+                .map(|i| BigInt::from(i - 13))
+                .collect();
             let fast = evaluate(&basis, &coefficients, &p).unwrap();
             let mut slow = BigInt::zero();
             for (terms, a) in basis.polynomials().unwrap().iter().zip(&coefficients) {
@@ -276,9 +282,17 @@ mod tests {
                     slow += a * c * BigInt::from(p[0]).pow(e[0]) * BigInt::from(p[1]).pow(e[1]);
                 }
             }
-            assert_eq!(fast, slow);
+            prop_assert_eq!(fast, slow);
         }
-        // Far from the origin the lifting overflows i64: the big-integer path answers.
+    }
+
+    /// Far from the origin the lifting overflows i64: the big-integer path answers.
+    #[test]
+    fn far_points_are_evaluated_in_big_integers() {
+        let basis = Model::Poly(6).basis();
+        let coefficients: Vec<BigInt> = (0..basis.dim() as i64)
+            .map(|i| BigInt::from(i - 13))
+            .collect();
         let far = [1 << 20, -(1 << 20)];
         assert!(evaluate(&basis, &coefficients, &far).is_some());
     }
