@@ -37,5 +37,7 @@ pub use colour::{
 pub use grey::Compat;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};
+#[cfg(test)]
+pub(crate) use mask::repeated_blob;
 pub use mask::Mask;
 pub use otsu::{ParseThresholdError, Threshold};

@@ -48,6 +48,7 @@ use std::sync::Arc;
 mod budget;
 mod optimal;
 mod reach;
+mod shapes;
 mod window;
 pub use budget::{Cut, WorkBudget};
 pub use optimal::optimal_points;
@@ -388,7 +389,12 @@ pub(crate) fn decompose_reporting(
             |rec, chunk| match rec.as_mut() {
                 Some(rec) => {
                     let before = rec.stats();
-                    let pieces = chunk.iter().map(|c| one(c, rec)).collect();
+                    // Tiny contours repeat (noise, halftones): each shape once per task.
+                    let mut memo = shapes::PieceMemo::default();
+                    let pieces = chunk
+                        .iter()
+                        .map(|c| memo.pieces(c, wraps(c), || one(c, rec)))
+                        .collect();
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
                     done(n);
                     (pieces, &rec.stats() - &before)

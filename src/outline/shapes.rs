@@ -119,7 +119,7 @@ fn translated(path: &ContourPath, v: Vec2) -> ContourPath {
 
 #[cfg(test)]
 mod tests {
-    use crate::bitmap::Mask;
+    use crate::bitmap::repeated_blob;
     use crate::contour::{trace, Convention};
     use crate::decompose::{decompose, OutlierRule};
     use crate::export::svg::{svg_document, SvgOptions};
@@ -136,14 +136,7 @@ mod tests {
             offsets in prop::collection::vec((0u32..60, 0u32..60), 1..4),
             model in prop::sample::select(vec![Model::Line, Model::Circle, Model::Conic]),
         ) {
-            let blob = |u: u32, v: u32| u < 4 && v < 3 && bits[(v * 4 + u) as usize];
-            let mut origins = vec![(2u32, 2u32)];
-            origins.extend(offsets.iter().map(|&(x, y)| (2 + 6 * (x / 6 + 1), 2 + 5 * (y / 5))));
-            let mask = Mask::from_fn(70, 70, |x, y| {
-                origins
-                    .iter()
-                    .any(|&(ox, oy)| x >= ox && y >= oy && blob(x - ox, y - oy))
-            });
+            let mask = repeated_blob(&bits, &offsets);
             let d = decompose(trace(&mask, Convention::Default), model, OutlierRule::NotInPiece);
             let out = svg_document(&d, 70, 70, &SvgOptions::default());
             let r = fidelity(&out.svg, &mask).unwrap();

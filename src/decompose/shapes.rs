@@ -1,0 +1,109 @@
+//! Tiny contours decomposed once per shape: a contour's pieces depend only on its points
+//! relative to its first one (every piece is recognized relative to its own first point, in
+//! exact integer arithmetic and floats on the same relative values), so the repeated small
+//! contours of noise and halftones are decomposed once per shape within a task and the
+//! pieces moved to the others (only the certificates' origins change).
+
+use std::collections::HashMap;
+
+use super::Piece;
+use crate::contour::Contour;
+
+/// Contours of at most this many points are decomposed once per shape.
+const TINY_POINTS: usize = 32;
+
+/// What decides a tiny contour's pieces: its points relative to the first one and whether
+/// its pieces may wrap round (see `wraps`).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct ShapeKey {
+    wraps: bool,
+    points: Vec<(i32, i32)>,
+}
+
+/// The pieces of the tiny shapes met so far (with their rotation, for optimal covers), their
+/// certificates' origins relative to the contour's first point.
+#[derive(Debug, Default)]
+pub(super) struct PieceMemo {
+    pieces: HashMap<ShapeKey, (usize, Vec<Piece>)>,
+}
+
+impl PieceMemo {
+    /// The pieces of `contour` (rotated by the returned count, as the cover computed
+    /// them): from the memo when its shape is known, otherwise from `decompose`, kept when
+    /// the contour is tiny.
+    pub(super) fn pieces(
+        &mut self,
+        contour: &Contour,
+        wraps: bool,
+        decompose: impl FnOnce() -> (usize, Vec<Piece>),
+    ) -> (usize, Vec<Piece>) {
+        let Some(first) = contour.points.first().copied() else {
+            return decompose();
+        };
+        if contour.points.len() > TINY_POINTS {
+            return decompose();
+        }
+        let key = ShapeKey {
+            wraps,
+            points: contour
+                .points
+                .iter()
+                .map(|p| (p.x - first.x, p.y - first.y))
+                .collect(),
+        };
+        let shift = |pieces: &[Piece], dx: i64, dy: i64| -> Vec<Piece> {
+            pieces
+                .iter()
+                .map(|p| {
+                    let mut p = p.clone();
+                    if let [x, y] = p.certificate.origin.as_mut_slice() {
+                        *x += dx;
+                        *y += dy;
+                    }
+                    p
+                })
+                .collect()
+        };
+        let (fx, fy) = (i64::from(first.x), i64::from(first.y));
+        if let Some((rotation, pieces)) = self.pieces.get(&key) {
+            return (*rotation, shift(pieces, fx, fy));
+        }
+        let (rotation, pieces) = decompose();
+        self.pieces
+            .insert(key, (rotation, shift(&pieces, -fx, -fy)));
+        (rotation, pieces)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::bitmap::repeated_blob;
+    use crate::contour::{trace, Convention};
+    use crate::decompose::{decompose_cover, decompose_points, Cover, OutlierRule, WorkBudget};
+    use crate::model::Model;
+    use crate::recognize::Recognizer;
+    use proptest::prelude::*;
+    use std::sync::Arc;
+
+    proptest! {
+        /// A random blob repeated far apart: every copy's pieces (taken from the memo but
+        /// the first) are the pieces a fresh recognizer finds for that contour alone.
+        #[test]
+        fn memo_pieces_are_the_pieces(
+            bits in prop::collection::vec(any::<bool>(), 12),
+            offsets in prop::collection::vec((0u32..60, 0u32..60), 1..4),
+            model in prop::sample::select(vec![Model::Line, Model::Circle, Model::Conic]),
+        ) {
+            let mask = repeated_blob(&bits, &offsets);
+            let rule = OutlierRule::NotInPiece;
+            let contours = trace(&mask, Convention::Default);
+            let d = decompose_cover(contours.clone(), model, rule, WorkBudget::default(), Cover::Greedy);
+            let basis = Arc::new(model.basis());
+            for (c, pieces) in contours.iter().zip(&d.pieces) {
+                let mut rec = Recognizer::new(basis.clone(), &[0, 0]).unwrap();
+                let alone = decompose_points(&c.points, &mut rec, rule);
+                prop_assert_eq!(pieces, &alone);
+            }
+        }
+    }
+}
