@@ -100,7 +100,7 @@ pub use bitmap::{
 };
 pub use contour::{trace, Border, BorderGraph, Contour, Convention};
 pub use curve::{
-    level_curve_path, Conic, CurveKind, EllipseParams, HyperbolaParams, ParabolaParams,
+    level_curve_path, Conic, CurveKind, EllipseParams, HyperbolaParams, LevelPath, ParabolaParams,
     PathCommand, Polynomial, MAX_DEGREE,
 };
 pub use decompose::{

@@ -193,6 +193,7 @@ pub(super) fn parabola_path(
 mod tests {
     use super::*;
     use crate::curve::test_util::*;
+    use crate::curve::LevelPath;
     use crate::curve::{level_curve_path, project, CurveKind, Polynomial};
     use kurbo::{Arc, ParamCurve, PathEl};
     use proptest::prelude::*;
@@ -238,7 +239,7 @@ mod tests {
                     p + poly.gradient(p).normalize() * noise[i]
                 })
                 .collect();
-            let (cmds, err) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+            let LevelPath { commands: cmds, max_error: err } = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
             if let [PathCommand::Line(end)] = cmds[..] {
                 // A short arc of a large ellipse (0.1 rad of radius 27) is drawn as its
                 // chord when that is within the tolerance (`flat_arc`).
@@ -294,7 +295,8 @@ mod tests {
             let guide: Vec<Point> = (1..20)
                 .map(|i| ellipse_point(c, r.x, r.y, a, 0.3 + sweep * i as f64 / 20.0))
                 .collect();
-            let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+            let LevelPath { commands: cmds, .. } =
+                level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
             let PathCommand::Arc(svg) = cmds[0] else {
                 panic!("{cmds:?}")
             };
@@ -325,7 +327,8 @@ mod tests {
             let guide: Vec<Point> = (1..40)
                 .map(|i| ellipse_point(c, r.x, r.y, a, 1.0 + dir * TAU * i as f64 / 40.0))
                 .collect();
-            let (cmds, _) = level_curve_path(&poly, from, from, &guide, 0.05).unwrap();
+            let LevelPath { commands: cmds, .. } =
+                level_curve_path(&poly, from, from, &guide, 0.05).unwrap();
             assert_eq!(cmds.len(), 2);
             let mut total = 0.0;
             let mut cur = from;
@@ -370,7 +373,10 @@ mod tests {
             let guide: Vec<Point> = (1..20)
                 .map(|j| at(u0 + (u1 - u0) * j as f64 / 20.0))
                 .collect();
-            let (cmds, err) = level_curve_path(&poly, at(u0), at(u1), &guide, 0.05).unwrap();
+            let LevelPath {
+                commands: cmds,
+                max_error: err,
+            } = level_curve_path(&poly, at(u0), at(u1), &guide, 0.05).unwrap();
             assert_eq!(err, 0.0);
             assert!(
                 matches!(cmds.as_slice(), [PathCommand::Quad(_, p)] if *p == at(u1)),
@@ -401,13 +407,17 @@ mod tests {
         // Radius 1e9: the chord to (40, ~0) is within the tolerance.
         let r = 1e9;
         let to = Point::new(x1, r - (r * r - x1 * x1).sqrt());
-        let (cmds, err) = level_curve_path(&circle(r), from, to, &guide, 0.01).unwrap();
+        let LevelPath {
+            commands: cmds,
+            max_error: err,
+        } = level_curve_path(&circle(r), from, to, &guide, 0.01).unwrap();
         assert_eq!(cmds, vec![PathCommand::Line(to)]);
         assert_le(err, 40.0 * 40.0 / (8.0 * r) * 1.01, "sagitta");
         // Too tight a tolerance for the sagitta of a radius-1000 circle: an exact arc.
         let r = 1000.0;
         let to = Point::new(x1, r - (r * r - x1 * x1).sqrt());
-        let (cmds, _) = level_curve_path(&circle(r), from, to, &guide, 0.1).unwrap();
+        let LevelPath { commands: cmds, .. } =
+            level_curve_path(&circle(r), from, to, &guide, 0.1).unwrap();
         assert!(matches!(cmds[..], [PathCommand::Arc(_)]), "{cmds:?}");
         // Round a circle of radius 10 from (0, 0) back near it: the guide is not beside the
         // chord, so the arc goes round.
@@ -415,7 +425,8 @@ mod tests {
         let at = |phi: f64| Point::new(r * phi.sin(), r - r * phi.cos());
         let (from, to) = (at(0.0), at(-0.05));
         let guide: Vec<Point> = (1..60).map(|i| at(f64::from(i) * 0.1)).collect();
-        let (cmds, _) = level_curve_path(&circle(r), from, to, &guide, 0.05).unwrap();
+        let LevelPath { commands: cmds, .. } =
+            level_curve_path(&circle(r), from, to, &guide, 0.05).unwrap();
         assert!(
             cmds.iter().all(|c| matches!(c, PathCommand::Arc(_))),
             "{cmds:?}"
@@ -425,7 +436,8 @@ mod tests {
         let r = 0.9;
         let at = |phi: f64| Point::new(r * phi.sin(), r - r * phi.cos());
         let guide: Vec<Point> = (1..20).map(|i| at(f64::from(i) * 0.3)).collect();
-        let (cmds, _) = level_curve_path(&circle(r), at(0.0), at(0.0), &guide, 0.05).unwrap();
+        let LevelPath { commands: cmds, .. } =
+            level_curve_path(&circle(r), at(0.0), at(0.0), &guide, 0.05).unwrap();
         assert!(!cmds.is_empty(), "a full turn is not an empty path");
         assert!(
             cmds.iter().all(|c| matches!(c, PathCommand::Arc(_))),
@@ -434,7 +446,8 @@ mod tests {
         let r = 1.0;
         let at = |phi: f64| Point::new(r * phi.sin(), r - r * phi.cos());
         let guide: Vec<Point> = (1..20).map(|i| at(f64::from(i) * 0.3)).collect();
-        let (cmds, _) = level_curve_path(&circle(r), at(0.0), at(-0.3), &guide, 0.05).unwrap();
+        let LevelPath { commands: cmds, .. } =
+            level_curve_path(&circle(r), at(0.0), at(-0.3), &guide, 0.05).unwrap();
         assert!(
             cmds.iter().all(|c| matches!(c, PathCommand::Arc(_))),
             "{cmds:?}"

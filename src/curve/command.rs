@@ -73,6 +73,7 @@ impl PathCommand {
 mod tests {
     use super::*;
     use crate::curve::test_util::*;
+    use crate::curve::LevelPath;
     use crate::curve::{level_curve_path, EllipseParams, Polynomial};
     use kurbo::ParamCurve;
 
@@ -90,7 +91,8 @@ mod tests {
         let guide: Vec<Point> = (1..20)
             .map(|i| ellipse_point(c, r.x, r.y, a, 0.5 + 3.5 * i as f64 / 20.0))
             .collect();
-        let (cmds, _) = level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
+        let LevelPath { commands: cmds, .. } =
+            level_curve_path(&poly, from, to, &guide, 0.05).unwrap();
         let mut path = kurbo::BezPath::new();
         path.move_to(from);
         let mut cur = from;

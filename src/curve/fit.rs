@@ -1,6 +1,7 @@
 //! Piecewise cubic Bézier fits of a trace, within a measured distance of the true curve.
 
 use super::command::PathCommand;
+use super::path::LevelPath;
 use super::polynomial::Polynomial;
 use super::solve::distance_bound;
 use super::trace::Trace;
@@ -170,11 +171,7 @@ fn best_fit(
 ///
 /// Returns None if a single trace step cannot be fitted within `tol`: where the trace
 /// crosses the gap between two branches by a saddle of `f`, its chord is off the curve.
-pub(super) fn fit_cubics(
-    poly: &Polynomial,
-    trace: &Trace,
-    tol: f64,
-) -> Option<(Vec<PathCommand>, f64)> {
+pub(super) fn fit_cubics(poly: &Polynomial, trace: &Trace, tol: f64) -> Option<LevelPath> {
     let n = trace.pts.len();
     let mut out = Vec::new();
     let mut max_err: f64 = 0.0;
@@ -231,7 +228,10 @@ pub(super) fn fit_cubics(
         out.push(PathCommand::Cubic(best.0.p1, best.0.p2, best.0.p3));
         i = end;
     }
-    Some((out, max_err))
+    Some(LevelPath {
+        commands: out,
+        max_error: max_err,
+    })
 }
 
 #[cfg(test)]
@@ -239,6 +239,7 @@ mod tests {
     use super::*;
     use crate::curve::solve::unit_tangent;
     use crate::curve::test_util::*;
+    use crate::curve::LevelPath;
     use crate::curve::{level_curve_path, Polynomial};
     use kurbo::{Arc, Point, Vec2};
     use proptest::prelude::*;
@@ -280,7 +281,10 @@ mod tests {
         };
         assert!(fit_cubics(&poly, &across, 0.05).is_none());
         // The same step is accepted at a tolerance above the gap.
-        let (cmds, err) = fit_cubics(&poly, &across, 0.2).expect("fits at 0.2 px");
+        let LevelPath {
+            commands: cmds,
+            max_error: err,
+        } = fit_cubics(&poly, &across, 0.2).expect("fits at 0.2 px");
         assert_eq!(cmds.len(), 1);
         assert_le(err, 0.2, "stated error");
     }
@@ -416,7 +420,7 @@ mod tests {
                     .map(|j| ellipse_point(centre, 12.0, 5.0, 0.3, 1.0 + sweep * j as f64 / 30.0))
                     .collect();
                 let guide = noisy_guide(&epoly, &exact, 0.45, &offsets);
-                let (cmds, _) =
+                let LevelPath { commands: cmds, .. } =
                     level_curve_path(&epoly, exact[0], exact[30], &guide, 0.05).unwrap();
                 let PathCommand::Arc(svg) = cmds[0] else {
                     panic!("{cmds:?}")

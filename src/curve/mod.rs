@@ -34,6 +34,6 @@ mod trace;
 pub use command::PathCommand;
 pub use conic::{Conic, EllipseParams, HyperbolaParams, ParabolaParams};
 pub use kind::CurveKind;
-pub use path::level_curve_path;
+pub use path::{level_curve_path, LevelPath};
 pub use polynomial::{Polynomial, MAX_DEGREE};
 pub use solve::{intersect_near, project};

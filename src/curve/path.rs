@@ -15,6 +15,25 @@ pub const GUIDE_MAX_DISTANCE: f64 = 2.0;
 /// `from` and `to` farther than this (in pixels) from the curve make [`level_curve_path`] fail.
 pub(super) const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
 
+/// A drawing of part of a level curve: its commands and how far they stray from the curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LevelPath {
+    /// The commands, from the start point given (the `M` is the caller's).
+    pub commands: Vec<PathCommand>,
+    /// The measured largest distance between the commands and the true curve (0 for the
+    /// exact forms: lines, circular and elliptical arcs, parabola arcs).
+    pub max_error: f64,
+}
+
+impl LevelPath {
+    fn exact(commands: Vec<PathCommand>) -> LevelPath {
+        LevelPath {
+            commands,
+            max_error: 0.0,
+        }
+    }
+}
+
 /// The part of the level curve `poly = 0` from `from` to `to`, as SVG path commands, with the
 /// measured maximal distance between the emitted path and the true curve (0 for the exact
 /// forms: lines, circular and elliptical arcs, parabola arcs).
@@ -50,11 +69,11 @@ pub(super) const ENDPOINT_MAX_DISTANCE: f64 = 0.01;
 /// // The circle x² + y² = 25, from (5, 0) to (0, 5) the short way (the guide point says which).
 /// let circle = Polynomial::new(&[(2, 0, 1.0), (0, 2, 1.0), (0, 0, -25.0)]).unwrap();
 /// let guide = [Point::new(3.5355, 3.5355)];
-/// let (commands, error) =
+/// let path =
 ///     level_curve_path(&circle, Point::new(5.0, 0.0), Point::new(0.0, 5.0), &guide, 0.01).unwrap();
 /// // An exact elliptical arc: no fitting error.
-/// assert!(matches!(commands[..], [PathCommand::Arc(_)]));
-/// assert_eq!(error, 0.0);
+/// assert!(matches!(path.commands[..], [PathCommand::Arc(_)]));
+/// assert_eq!(path.max_error, 0.0);
 /// ```
 #[allow(clippy::neg_cmp_op_on_partial_ord)] // `!(d <= max)` also rejects NaN distances.
 pub fn level_curve_path(
@@ -63,7 +82,7 @@ pub fn level_curve_path(
     to: Point,
     guide: &[Point],
     tolerance: f64,
-) -> Option<(Vec<PathCommand>, f64)> {
+) -> Option<LevelPath> {
     if !from.is_finite()
         || !to.is_finite()
         || guide.iter().any(|g| !g.is_finite())
@@ -87,7 +106,7 @@ pub fn level_curve_path(
                 } else {
                     vec![PathCommand::Line(to)]
                 };
-                return Some((cmds, 0.0));
+                return Some(LevelPath::exact(cmds));
             }
             CurveKind::Circle | CurveKind::Ellipse => {
                 if let Some(sagitta) = flat_arc(&conic, from, to, guide, tolerance) {
@@ -96,11 +115,16 @@ pub fn level_curve_path(
                     } else {
                         vec![PathCommand::Line(to)]
                     };
-                    return Some((cmds, sagitta));
+                    return Some(LevelPath {
+                        commands: cmds,
+                        max_error: sagitta,
+                    });
                 }
-                return ellipse_path(&conic, from, to, guide).map(|c| (c, 0.0));
+                return ellipse_path(&conic, from, to, guide).map(LevelPath::exact);
             }
-            CurveKind::Parabola => return parabola_path(&conic, from, to, guide).map(|c| (c, 0.0)),
+            CurveKind::Parabola => {
+                return parabola_path(&conic, from, to, guide).map(LevelPath::exact)
+            }
             CurveKind::Hyperbola => {
                 let params = conic.hyperbola_params()?;
                 let (centre, axis) = (params.centre, Vec2::from_angle(params.rotation));
@@ -159,7 +183,7 @@ mod tests {
             } else {
                 Vec::new()
             };
-            if let Some((cmds, err)) = level_curve_path(&poly, from, to, &guide, 0.05) {
+            if let Some(LevelPath { commands: cmds, max_error: err }) = level_curve_path(&poly, from, to, &guide, 0.05) {
                 prop_assert!(err.is_finite(), "{}", err);
                 if let Some(last) = cmds.last() {
                     assert_point_close(last.end(), to, 0.0, "random path end");
@@ -180,7 +204,10 @@ mod tests {
     #[test]
     fn lines_and_bad_input() {
         let line = Polynomial::new(&[(1, 0, 1.0), (0, 1, 1.0), (0, 0, -10.0)]).unwrap();
-        let (cmds, err) = level_curve_path(
+        let LevelPath {
+            commands: cmds,
+            max_error: err,
+        } = level_curve_path(
             &line,
             Point::new(0.0, 10.0),
             Point::new(10.0, 0.0),

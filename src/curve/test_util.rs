@@ -4,7 +4,7 @@
 use super::command::PathCommand;
 use super::conic::Conic;
 use super::kind::CurveKind;
-use super::path::level_curve_path;
+use super::path::{level_curve_path, LevelPath};
 use super::polynomial::Polynomial;
 use super::solve::project;
 use super::trace::segment_distance;
@@ -124,7 +124,10 @@ pub(super) fn check_fit(
     guide: &[Point],
     tol: f64,
 ) -> (Vec<PathCommand>, f64) {
-    let (cmds, err) = level_curve_path(poly, from, to, guide, tol).expect("path");
+    let LevelPath {
+        commands: cmds,
+        max_error: err,
+    } = level_curve_path(poly, from, to, guide, tol).expect("path");
     assert_le(err, tol, "reported error");
     assert!(!cmds.is_empty());
     assert!(

@@ -287,6 +287,7 @@ pub(super) fn trace_curve(
 mod tests {
     use super::*;
     use crate::curve::test_util::*;
+    use crate::curve::LevelPath;
     use crate::curve::{level_curve_path, Conic, CurveKind};
     use std::f64::consts::TAU;
 
@@ -363,7 +364,10 @@ mod tests {
         let guide: Vec<Point> = (1..8)
             .map(|i| from + Vec2::new(i as f64 + 0.3, i as f64))
             .collect();
-        let (cmds, err) = level_curve_path(&double, from, to, &guide, 0.05).unwrap();
+        let LevelPath {
+            commands: cmds,
+            max_error: err,
+        } = level_curve_path(&double, from, to, &guide, 0.05).unwrap();
         assert_le(err, 0.05, "double line error");
         assert_point_close(cmds.last().unwrap().end(), to, 0.0, "double line end");
         for p in sample_path(from, &cmds, 32) {

@@ -27,7 +27,7 @@ use super::cracks::{centre, crack_polyline};
 use super::path::ContourPath;
 use super::stretch::{Drawing, Stretch};
 use super::vertices::{shared_vertex, Sides};
-use crate::curve::{intersect_near, level_curve_path, project, PathCommand};
+use crate::curve::{intersect_near, level_curve_path, project, LevelPath, PathCommand};
 use crate::pixel::Pixel;
 use kurbo::{BezPath, Point};
 use std::collections::HashMap;
@@ -44,7 +44,7 @@ pub const STRAY_MARGIN: f64 = 2.0;
 
 /// A stretch's drawing between two end points: its commands and fitting error, or `None`
 /// when it cannot be drawn.
-type Drawn = Option<(Vec<PathCommand>, f64)>;
+type Drawn = Option<LevelPath>;
 
 /// What one drawing computes that the next can reuse: the intersection at each junction
 /// (it depends only on the two curves and `m`) and each stretch's path between given end
@@ -250,13 +250,13 @@ pub(crate) fn build(
                     let pixels = &points[s.first..=s.last];
                     let guide: Vec<Point> = pixels.iter().map(|&p| centre(p)).collect();
                     level_curve_path(poly, from, to, &guide, s.tolerance)
-                        .filter(|(cmds, _)| stays_near(from, cmds, pixels))
+                        .filter(|p| stays_near(from, &p.commands, pixels))
                 })
                 .clone();
             match drawn {
-                Some((cmds, err)) => {
-                    out.max_fit_error = out.max_fit_error.max(err);
-                    b.extend(&cmds);
+                Some(p) => {
+                    out.max_fit_error = out.max_fit_error.max(p.max_error);
+                    b.extend(&p.commands);
                 }
                 None => {
                     failed.push(k);
