@@ -3,14 +3,14 @@
 //! certificates checked here independently; and the CLI's `--cover` reaching the JSON.
 
 use layertrace::{
-    decompose, decompose_cover, load_path, piece_outliers, trace, Convention, Cover, LoadOptions,
-    Model, OutlierRule, Outliers, Pixel, WorkBudget,
+    decompose, decompose_cover, load_path, trace, Convention, Cover, LoadOptions, Model,
+    OutlierRule, Pixel, WorkBudget,
 };
 use std::path::Path;
 use std::process::Command;
 
 mod common;
-use common::{samples, value};
+use common::{check_pieces, samples};
 
 /// True when `b` is `a` started at another point.
 fn is_rotation(a: &[Pixel], b: &[Pixel]) -> bool {
@@ -41,7 +41,6 @@ fn optimal_never_more_pieces_than_greedy_on_every_sample() {
             assert_eq!(d.stats.undecided, 0, "{path} {model}");
             let basis = model.basis();
             for (k, (c, pieces)) in d.contours.iter().zip(&d.pieces).enumerate() {
-                let n = c.points.len();
                 assert!(
                     pieces.len() <= greedy.pieces[k].len(),
                     "{path} {model} contour {k}"
@@ -50,38 +49,7 @@ fn optimal_never_more_pieces_than_greedy_on_every_sample() {
                     is_rotation(&contours[k].points, &c.points),
                     "{path} {model}"
                 );
-                assert_eq!(pieces.first().map(|p| p.first), Some(0));
-                assert_eq!(pieces.last().map(|p| p.last), Some(n - 1));
-                for w in pieces.windows(2) {
-                    assert_eq!(w[0].last + 1, w[1].first, "{path} {model}");
-                }
-                for p in pieces {
-                    let cert = &p.certificate;
-                    let first = &c.points[p.first];
-                    assert_eq!(cert.origin, vec![first.x as i64, first.y as i64]);
-                    let v = |q: Pixel| value(&basis, &cert.origin, &cert.coefficients, q);
-                    let inl: Vec<i128> = c.points[p.first..=p.last].iter().map(|&q| v(q)).collect();
-                    assert_eq!(
-                        inl.iter().min(),
-                        Some(&cert.extremes.lower),
-                        "{path} {model}"
-                    );
-                    assert_eq!(
-                        inl.iter().max(),
-                        Some(&cert.extremes.upper),
-                        "{path} {model}"
-                    );
-                    let Outliers { right, left } =
-                        piece_outliers(&c.points, p.first, p.last, OutlierRule::NotInPiece);
-                    assert!(
-                        right.iter().all(|&q| v(q) > cert.extremes.upper),
-                        "{path} {model}"
-                    );
-                    assert!(
-                        left.iter().all(|&q| v(q) < cert.extremes.lower),
-                        "{path} {model}"
-                    );
-                }
+                check_pieces(&basis, c, pieces, &format!("{path} {model}"));
             }
             totals.push((path.clone(), model, greedy.piece_count(), d.piece_count()));
         }

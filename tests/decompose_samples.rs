@@ -11,7 +11,7 @@ use std::process::Command;
 use std::sync::Arc;
 
 mod common;
-use common::{samples, value};
+use common::{check_pieces, samples};
 
 fn run(path: &str, model: Model) -> Decomposition {
     let loaded = load_path(Path::new(path), &LoadOptions::default()).unwrap();
@@ -37,37 +37,9 @@ fn certificates_and_maximality_on_every_sample() {
             assert_eq!(d.stats.undecided, 0, "{path} {model}");
             for (c, pieces) in d.contours.iter().zip(&d.pieces) {
                 let n = c.points.len();
-                // The pieces tile the contour in order.
-                assert_eq!(pieces.first().map(|p| p.first), Some(0));
-                assert_eq!(pieces.last().map(|p| p.last), Some(n - 1));
-                for w in pieces.windows(2) {
-                    assert_eq!(w[0].last + 1, w[1].first, "{path} {model}");
-                }
+                // The pieces tile the contour in order, with valid certificates.
+                check_pieces(&basis, c, pieces, &format!("{path} {model}"));
                 for p in pieces {
-                    let cert = &p.certificate;
-                    assert_eq!(cert.origin, xy(&c.points[p.first]));
-                    let v = |q: Pixel| value(&basis, &cert.origin, &cert.coefficients, q);
-                    let inl: Vec<i128> = c.points[p.first..=p.last].iter().map(|&q| v(q)).collect();
-                    assert_eq!(
-                        inl.iter().min(),
-                        Some(&cert.extremes.lower),
-                        "{path} {model}"
-                    );
-                    assert_eq!(
-                        inl.iter().max(),
-                        Some(&cert.extremes.upper),
-                        "{path} {model}"
-                    );
-                    let Outliers { right, left } =
-                        piece_outliers(&c.points, p.first, p.last, OutlierRule::NotInPiece);
-                    assert!(
-                        right.iter().all(|&q| v(q) > cert.extremes.upper),
-                        "{path} {model} right"
-                    );
-                    assert!(
-                        left.iter().all(|&q| v(q) < cert.extremes.lower),
-                        "{path} {model} left"
-                    );
                     // Maximal: one more point is not described, with a verified witness.
                     if p.last + 1 < n {
                         let Outliers {

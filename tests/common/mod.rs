@@ -3,7 +3,7 @@
 // Each test binary uses its own subset of these.
 #![allow(dead_code)]
 
-use layertrace::{Basis, Pixel};
+use layertrace::{piece_outliers, Basis, Contour, OutlierRule, Outliers, Piece, Pixel};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -62,4 +62,42 @@ pub fn value(basis: &dyn Basis, origin: &[i64], a: &[i64], p: Pixel) -> i128 {
         .lift(&[p.x as i64 - origin[0], p.y as i64 - origin[1]], &mut f)
         .unwrap();
     f.iter().zip(a).map(|(&x, &y)| x as i128 * y as i128).sum()
+}
+
+/// The pieces tile `contour` in order, and each piece's certificate holds, checked with
+/// [`value`]: origin at its first point, `lower`/`upper` the extremes over its pixels, its
+/// RIGHT outliers strictly above and LEFT ones strictly below. `what` names the case.
+pub fn check_pieces(basis: &dyn Basis, contour: &Contour, pieces: &[Piece], what: &str) {
+    let n = contour.points.len();
+    assert_eq!(pieces.first().map(|p| p.first), Some(0), "{what}");
+    assert_eq!(pieces.last().map(|p| p.last), Some(n - 1), "{what}");
+    for w in pieces.windows(2) {
+        assert_eq!(w[0].last + 1, w[1].first, "{what}");
+    }
+    for p in pieces {
+        let cert = &p.certificate;
+        let first = contour.points[p.first];
+        assert_eq!(
+            cert.origin,
+            vec![i64::from(first.x), i64::from(first.y)],
+            "{what}"
+        );
+        let v = |q: Pixel| value(basis, &cert.origin, &cert.coefficients, q);
+        let inl: Vec<i128> = contour.points[p.first..=p.last]
+            .iter()
+            .map(|&q| v(q))
+            .collect();
+        assert_eq!(inl.iter().min(), Some(&cert.extremes.lower), "{what}");
+        assert_eq!(inl.iter().max(), Some(&cert.extremes.upper), "{what}");
+        let Outliers { right, left } =
+            piece_outliers(&contour.points, p.first, p.last, OutlierRule::NotInPiece);
+        assert!(
+            right.iter().all(|&q| v(q) > cert.extremes.upper),
+            "{what} right"
+        );
+        assert!(
+            left.iter().all(|&q| v(q) < cert.extremes.lower),
+            "{what} left"
+        );
+    }
 }
