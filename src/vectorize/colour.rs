@@ -42,6 +42,7 @@ use crate::export::json::{colour_json, JsonRegion};
 use crate::export::layers::{layers_document, SvgLayer};
 use crate::export::svg::SvgOutput;
 use crate::fidelity::{colour_fidelity, ColourFidelity};
+use crate::outline::Partition;
 
 /// One layer of the stack.
 #[derive(Clone, Debug)]
@@ -70,7 +71,7 @@ pub struct ColourVectorized {
     pub fidelity: Option<ColourFidelity>,
     /// With [`Layout::Partition`](super::Layout::Partition): the borders, each drawn once,
     /// and each region's loops of them.
-    pub partition: Option<crate::outline::Partition>,
+    pub partition: Option<Partition>,
 }
 
 /// What [`run`] returns to [`vectorize`](super::vectorize).
@@ -176,24 +177,40 @@ pub(super) fn run(
             options.layout.name(),
         )
     });
-    let fidelity = match (&svg, options.fidelity) {
-        (Some(svg), true) => Some(colour_fidelity(&svg.svg, image, options.smooth)?),
-        _ => None,
-    };
-    let merged = merged_decomposition(&layers, options);
-    let mask = image.mask_where(|_| true);
-    Ok(ColourRun {
-        colour: ColourVectorized {
-            regions,
-            layers,
-            fidelity,
-            partition: None,
-        },
-        svg,
-        json,
-        merged,
-        mask,
-    })
+    ColourRun::finish(regions, layers, svg, json, None, options)
+}
+
+impl ColourRun {
+    /// The run once its layers are drawn: the fidelity check (when asked), the merged
+    /// decomposition and the mask of every region's pixels.
+    pub(super) fn finish(
+        regions: Regions,
+        layers: Vec<ColourLayer>,
+        svg: Option<SvgOutput>,
+        json: Option<String>,
+        partition: Option<Partition>,
+        options: &Options,
+    ) -> Result<ColourRun, Error> {
+        let image = &regions.image;
+        let fidelity = match (&svg, options.fidelity) {
+            (Some(svg), true) => Some(colour_fidelity(&svg.svg, image, options.smooth)?),
+            _ => None,
+        };
+        let merged = merged_decomposition(&layers, options);
+        let mask = image.mask_where(|_| true);
+        Ok(ColourRun {
+            colour: ColourVectorized {
+                regions,
+                layers,
+                fidelity,
+                partition,
+            },
+            svg,
+            json,
+            merged,
+            mask,
+        })
+    }
 }
 
 impl ColourLayer {

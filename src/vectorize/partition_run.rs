@@ -12,7 +12,7 @@ pub(super) fn run(
     regions: crate::bitmap::Regions,
     options: &super::Options,
 ) -> Result<super::colour::ColourRun, Error> {
-    use super::colour::{pad, ColourLayer, ColourRun, ColourVectorized, MARGIN};
+    use super::colour::{pad, ColourLayer, ColourRun, MARGIN};
     use crate::export::partition::{
         partition_document, partition_json, path_data, PartitionRegion,
     };
@@ -74,22 +74,6 @@ pub(super) fn run(
             h,
         )
     });
-    let fidelity = match (&svg, options.fidelity) {
-        (Some(svg), true) => Some(crate::fidelity::colour_fidelity(&svg.svg, image, None)?),
-        _ => None,
-    };
-    let merged = super::colour::merged_decomposition(&layers, options);
-    let mask = image.mask_where(|_| true);
-    Ok(ColourRun {
-        colour: ColourVectorized {
-            regions,
-            layers,
-            fidelity,
-            partition: Some(part),
-        },
-        svg,
-        json,
-        merged,
-        mask,
-    })
+    // (Smooth partitions are refused above, so the fidelity check has no band.)
+    ColourRun::finish(regions, layers, svg, json, Some(part), options)
 }
