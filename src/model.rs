@@ -301,7 +301,7 @@ pub struct ParseModelError {
 enum ParseModelErrorKind {
     /// No model has this name.
     Unknown,
-    /// No image model has this name (it may be a 3-D one's, or no model's).
+    /// No model has this name, where an image model is wanted.
     UnknownImageModel,
     /// A model of 3-D point sets where an image model is wanted.
     PointSetsOnly,

@@ -145,7 +145,8 @@ pub struct Decomposition {
     pub rule: OutlierRule,
     /// The cover the pieces form.
     pub cover: Cover,
-    /// Work done by the recognizers.
+    /// Work done by the recognizers (a tiny contour whose shape was already decomposed in
+    /// its task counts as if decomposed again).
     pub stats: Stats,
 }
 
@@ -393,11 +394,13 @@ pub(crate) fn decompose_reporting(
                     let mut memo = shapes::PieceMemo::default();
                     let pieces = chunk
                         .iter()
-                        .map(|c| memo.pieces(c, wraps(c), || one(c, rec)))
+                        .map(|c| memo.pieces(c, wraps(c), rec, |rec| one(c, rec)))
                         .collect();
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
                     done(n);
-                    (pieces, &rec.stats() - &before)
+                    let mut stats = &rec.stats() - &before;
+                    stats += memo.copied_stats();
+                    (pieces, stats)
                 }
                 None => {
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();

@@ -2,12 +2,16 @@
 //! relative to its first one (every piece is recognized relative to its own first point, in
 //! exact integer arithmetic and floats on the same relative values), so the repeated small
 //! contours of noise and halftones are decomposed once per shape within a task and the
-//! pieces moved to the others (only the certificates' origins change).
+//! pieces moved to the others (only the certificates' origins change). The recognizer's
+//! [`Stats`] of a shape are counted again for each copy, so the decomposition's stats are
+//! those of decomposing every contour (a piece cut by its budget is counted once per copy,
+//! as its `Cut` is).
 
 use std::collections::HashMap;
 
 use super::Piece;
 use crate::contour::Contour;
+use crate::recognize::{Recognizer, Stats};
 
 /// Contours of at most this many points are decomposed once per shape.
 const TINY_POINTS: usize = 32;
@@ -24,24 +28,35 @@ struct ShapeKey {
 /// certificates' origins relative to the contour's first point.
 #[derive(Debug, Default)]
 pub(super) struct PieceMemo {
-    pieces: HashMap<ShapeKey, (usize, Vec<Piece>)>,
+    pieces: HashMap<ShapeKey, Decomposed>,
+    /// The stats of the copies taken from the memo.
+    copied: Stats,
+}
+
+/// A shape's pieces (rotated by `rotation`), and the recognizer's work on them.
+#[derive(Debug)]
+struct Decomposed {
+    rotation: usize,
+    pieces: Vec<Piece>,
+    stats: Stats,
 }
 
 impl PieceMemo {
     /// The pieces of `contour` (rotated by the returned count, as the cover computed
-    /// them): from the memo when its shape is known, otherwise from `decompose`, kept when
-    /// the contour is tiny.
+    /// them): from the memo when its shape is known, otherwise from `decompose` run with
+    /// `rec`, kept when the contour is tiny.
     pub(super) fn pieces(
         &mut self,
         contour: &Contour,
         wraps: bool,
-        decompose: impl FnOnce() -> (usize, Vec<Piece>),
+        rec: &mut Recognizer,
+        decompose: impl FnOnce(&mut Recognizer) -> (usize, Vec<Piece>),
     ) -> (usize, Vec<Piece>) {
         let Some(first) = contour.points.first().copied() else {
-            return decompose();
+            return decompose(rec);
         };
         if contour.points.len() > TINY_POINTS {
-            return decompose();
+            return decompose(rec);
         }
         let key = ShapeKey {
             wraps,
@@ -65,13 +80,27 @@ impl PieceMemo {
                 .collect()
         };
         let (fx, fy) = (i64::from(first.x), i64::from(first.y));
-        if let Some((rotation, pieces)) = self.pieces.get(&key) {
-            return (*rotation, shift(pieces, fx, fy));
+        if let Some(d) = self.pieces.get(&key) {
+            self.copied += &d.stats;
+            return (d.rotation, shift(&d.pieces, fx, fy));
         }
-        let (rotation, pieces) = decompose();
-        self.pieces
-            .insert(key, (rotation, shift(&pieces, -fx, -fy)));
+        let before = rec.stats();
+        let (rotation, pieces) = decompose(rec);
+        let stats = &rec.stats() - &before;
+        self.pieces.insert(
+            key,
+            Decomposed {
+                rotation,
+                pieces: shift(&pieces, -fx, -fy),
+                stats,
+            },
+        );
         (rotation, pieces)
+    }
+
+    /// The stats of the copies taken from the memo so far.
+    pub(super) fn copied_stats(&self) -> &Stats {
+        &self.copied
     }
 }
 

@@ -409,8 +409,9 @@ pub(crate) fn path_data(
     // Contours are drawn independently, in parallel, a group at a time (only the group's
     // path data is held besides the document); appended in order, so the document does not
     // depend on the number of threads.
-    // Tiny contours are drawn once per shape (see `ShapeMemo`); not with a band, whose
-    // drawing depends on the mask round the contour.
+    // Tiny contours are drawn once per shape (see `ShapeMemo`: at most 65 536 shapes are
+    // held, 33 MB in all on 2000² noise); not with a band, whose drawing depends on the
+    // mask round the contour.
     let mut memo = ShapeMemo::default();
     for (g, group) in d.contours.chunks(CONTOURS_PER_GROUP).enumerate() {
         let pieces_of = |k: usize| d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
@@ -418,7 +419,7 @@ pub(crate) fn path_data(
             .iter()
             .enumerate()
             .map(|(k, c)| {
-                band.is_none()
+                (band.is_none() && !memo.is_full())
                     .then(|| ShapeKey::of(c, pieces_of(k)))
                     .flatten()
             })

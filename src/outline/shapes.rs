@@ -1,16 +1,19 @@
-//! Tiny contours drawn once per shape: the drawing of a contour depends only on its points
-//! relative to its first one, so the many small contours of noise, halftones and dotted
-//! lines (10 363 contours of at most 32 points in a 400² noise image, of 1 895 shapes) are
-//! drawn once per shape and translated.
+//! Tiny contours drawn once per shape: the many small contours of noise, halftones and
+//! dotted lines (10 363 contours of at most 32 points in a 400² noise image, of 1 895 shapes)
+//! are drawn once per shape and translated.
 //!
-//! # Why a translated drawing is the drawing
-//! Everything [`contour_path`](super::contour_path) decides is decided on the contour's
-//! points and pieces: the pieces' outliers come from consecutive points, the render check
-//! compares with the contour's own crack polygon, and tiny-skia's results do not change
-//! under a translation by whole pixels (see [`super::render_check`]). The drawing is made
-//! at the shape's first contour and moved by whole pixels to the others; every point stays
-//! on the `2^-grid` grid, where the translation is exact in `f64` and in tiny-skia's fixed
-//! point, so each copy is exactly as checked.
+//! # Why a translated drawing is exact
+//! The shape is the contour's points relative to its first one and its pieces, certificates
+//! included (also relative to that point). What [`contour_path`](super::contour_path)
+//! *checks* depends on nothing else: the pieces' outliers come from consecutive points, the
+//! render check compares with the contour's own crack polygon in a window moved by whole
+//! pixels, and tiny-skia's results do not change under such a move (see
+//! [`super::render_check`]). The drawing is made at the shape's first contour (in document
+//! order, whatever the number of threads) and moved by whole pixels to the others; every
+//! point stays on the `2^-grid` grid, where the move is exact in `f64` and in tiny-skia's
+//! fixed point, so each copy is exact in tiny-skia where it lands. (A drawing made afresh
+//! at another place may differ in floating-point detail, since the curves are expanded at
+//! absolute coordinates: it would be another exact drawing.)
 
 use std::collections::HashMap;
 
@@ -20,21 +23,33 @@ use super::path::ContourPath;
 use crate::contour::Contour;
 use crate::curve::PathCommand;
 use crate::decompose::Piece;
+use crate::recognize::Extremes;
 
 /// Contours of at most this many points are drawn once per shape.
 pub(crate) const TINY_POINTS: usize = 32;
 
-/// Most shapes kept: beyond, new shapes are drawn every time (bounds the memory of an image
-/// whose tiny contours are all different).
+/// Most shapes kept: beyond, new shapes are drawn where they are. Bounds the memory of an
+/// image whose tiny contours are all different: a drawing of at most 32 points takes a few
+/// hundred bytes (the memo held 33 MB on 2000² noise, against 350 MB for the whole run).
 const MAX_SHAPES: usize = 1 << 16;
 
 /// What decides a tiny contour's drawing: its points relative to the first one, whether it
-/// is a hole, and where its pieces start and end.
+/// is a hole, and its pieces (bounds and certificates, origins relative to that point).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct ShapeKey {
     hole: bool,
     points: Vec<(i32, i32)>,
-    pieces: Vec<(u32, u32)>,
+    pieces: Vec<PieceKey>,
+}
+
+/// A piece of a [`ShapeKey`].
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct PieceKey {
+    first: usize,
+    last: usize,
+    origin: Vec<i64>,
+    coefficients: Vec<i64>,
+    extremes: Extremes,
 }
 
 impl ShapeKey {
@@ -54,7 +69,19 @@ impl ShapeKey {
                 .collect(),
             pieces: pieces
                 .iter()
-                .map(|p| (p.first as u32, p.last as u32))
+                .map(|p| PieceKey {
+                    first: p.first,
+                    last: p.last,
+                    origin: p
+                        .certificate
+                        .origin
+                        .iter()
+                        .zip([first.x, first.y])
+                        .map(|(&o, f)| o.wrapping_sub(i64::from(f)))
+                        .collect(),
+                    coefficients: p.certificate.coefficients.clone(),
+                    extremes: p.certificate.extremes,
+                })
                 .collect(),
         })
     }
@@ -72,10 +99,15 @@ impl ShapeMemo {
         self.drawings.contains_key(key)
     }
 
+    /// Whether no more shapes are kept (new ones are then drawn where they are).
+    pub(crate) fn is_full(&self) -> bool {
+        self.drawings.len() >= MAX_SHAPES
+    }
+
     /// Keeps `path`, the drawing of `contour` whose shape is `key` (ignored once
     /// [`MAX_SHAPES`] are kept).
     pub(crate) fn insert(&mut self, key: ShapeKey, contour: &Contour, path: &ContourPath) {
-        if self.drawings.len() >= MAX_SHAPES {
+        if self.is_full() {
             return;
         }
         let first = contour.points[0];
@@ -141,6 +173,20 @@ mod tests {
             let out = svg_document(&d, 70, 70, &SvgOptions::default());
             let r = fidelity(&out.svg, &mask).unwrap();
             prop_assert_eq!(r.differing, 0, "{}", out.svg);
+            // The copies are the same drawing: after each subpath's absolute `M x y` the
+            // path data is relative, so every copy of a shape writes the same text.
+            let copies = 1 + offsets
+                .iter()
+                .map(|&(x, y)| (x / 6, y / 5))
+                .collect::<std::collections::HashSet<_>>()
+                .len();
+            let data = out.svg.split(" d=\"").nth(1).and_then(|d| d.split('"').next());
+            let subpaths: Vec<&str> = data.unwrap_or("").split('M').skip(1).collect();
+            let tails: std::collections::HashSet<&str> = subpaths
+                .iter()
+                .map(|p| p.trim_start_matches(|c: char| c.is_ascii_digit() || c == '.' || c == ' ' || c == '-'))
+                .collect();
+            prop_assert!(tails.len() * copies <= subpaths.len(), "{}", out.svg);
         }
     }
 }

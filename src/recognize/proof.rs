@@ -18,7 +18,7 @@ pub enum Side {
 
 /// The exact values of a layer's function `a·F` on the three sets: the layer is
 /// `lower ≤ a·F ≤ upper`, and it separates when `below < lower` and `upper < above`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct Extremes {
     /// `min_S a·F`.
     pub lower: i128,

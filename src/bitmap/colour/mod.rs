@@ -146,11 +146,14 @@ impl ColourImage {
     /// belongs to some region or lies outside the image: no pixel of no region is near.
     /// Where this holds, an anti-aliased drawing of the regions must be opaque, so a
     /// see-through pixel there is a seam.
+    /// A negative `radius` is taken as 0.
     pub fn regions_around(&self, x: i64, y: i64, radius: i64) -> bool {
         let (w, h) = (i64::from(self.width), i64::from(self.height));
-        (-radius..=radius).all(|dy| {
-            (-radius..=radius).all(|dx| {
-                let (u, v) = (x + dx, y + dy);
+        let r = radius.max(0);
+        (-r..=r).all(|dy| {
+            (-r..=r).all(|dx| {
+                // Saturated coordinates are outside the image, as the true ones are.
+                let (u, v) = (x.saturating_add(dx), y.saturating_add(dy));
                 u < 0 || v < 0 || u >= w || v >= h || self.get(u, v).is_some()
             })
         })
