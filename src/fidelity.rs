@@ -36,7 +36,7 @@ use crate::bitmap::{border_distance, Mask};
 use crate::error::Error;
 
 mod colour;
-mod staircase;
+pub(crate) mod staircase;
 
 pub use colour::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
 

@@ -1,7 +1,8 @@
 //! Pixel staircases in SVG path data: what a viewer sees as jaggies when zooming in.
 //!
-//! A *staircase* is a maximal run of at least [`MIN_RUN`] consecutive straight segments, each
-//! axis-aligned and at most [`MAX_STEP`] pixels long, alternating horizontal and vertical.
+//! A *staircase* is a maximal run of at least 4 consecutive straight segments, each
+//! axis-aligned and at most 2 pixels long, alternating horizontal and vertical (the counter
+//! is [`crate::outline::staircase`]'s, shared with the outline).
 //! The definition is the one of the project's shared tool `tools/staircase.py`, which this
 //! module reproduces exactly (its counts are the reference):
 //! * segments are read from the raw path data of every `d` attribute of the document (user
@@ -17,84 +18,9 @@
 //!   the start point counts as the two pieces on either side of it.
 
 use crate::error::Error;
+use crate::outline::staircase::Counter;
+pub use crate::outline::staircase::StaircaseCount;
 use svgtypes::{PathParser, PathSegment};
-
-/// Fewest segments in a staircase.
-pub const MIN_RUN: u64 = 4;
-
-/// Longest step (pixels, user units) of a staircase.
-pub const MAX_STEP: f64 = 2.0;
-
-/// Staircases found in some path data.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct StaircaseCount {
-    /// Staircase runs.
-    pub runs: u64,
-    /// Segments inside those runs.
-    pub segments: u64,
-    /// Straight segments of the path data (closing segments included).
-    pub lines: u64,
-}
-
-impl std::ops::AddAssign for StaircaseCount {
-    fn add_assign(&mut self, o: Self) {
-        self.runs += o.runs;
-        self.segments += o.segments;
-        self.lines += o.lines;
-    }
-}
-
-/// Direction of a short axis-aligned segment.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Step {
-    Horizontal,
-    Vertical,
-}
-
-/// Counts runs while segments are fed one by one.
-#[derive(Default)]
-struct Counter {
-    count: StaircaseCount,
-    run: u64,
-    last: Option<Step>,
-}
-
-impl Counter {
-    fn end_run(&mut self) {
-        if self.run >= MIN_RUN {
-            self.count.runs += 1;
-            self.count.segments += self.run;
-        }
-        self.run = 0;
-    }
-
-    /// Anything but a straight segment: ends the run.
-    fn other(&mut self) {
-        self.end_run();
-        self.last = None;
-    }
-
-    fn line(&mut self, from: (f64, f64), to: (f64, f64)) {
-        self.count.lines += 1;
-        let (dx, dy) = ((to.0 - from.0).abs(), (to.1 - from.1).abs());
-        let step = if dy < 1e-9 && dx > 0.0 && dx <= MAX_STEP {
-            Some(Step::Horizontal)
-        } else if dx < 1e-9 && dy > 0.0 && dy <= MAX_STEP {
-            Some(Step::Vertical)
-        } else {
-            None
-        };
-        if step.is_some() && step != self.last {
-            self.run += 1;
-        } else {
-            self.end_run();
-            if step.is_some() {
-                self.run = 1;
-            }
-        }
-        self.last = step;
-    }
-}
 
 /// Staircases in one path's data (`d` attribute). Parsing stops at the first error, as
 /// SVG renderers do.
@@ -145,8 +71,7 @@ pub(crate) fn path_staircases(d: &str) -> StaircaseCount {
             }
         }
     }
-    c.end_run();
-    c.count
+    c.finish()
 }
 
 /// Staircases in every `d` attribute of an SVG document, summed.

@@ -39,16 +39,18 @@ mod render_check;
 mod separation;
 mod shapes;
 mod smooth;
+pub(crate) mod staircase;
 mod stretch;
 mod vertices;
 
-pub(crate) use band_path::{band_contour_path, has_staircase};
+pub(crate) use band_path::band_contour_path;
 pub(crate) use cut::{cut, Loop};
 pub(crate) use partition::{corner, loop_path, reverse};
 pub use partition::{BorderSource, Partition, PartitionBorder};
 pub use path::{CommandCounts, ContourPath, FallbackCounts, JoinCounts};
 pub use render_check::EdgeClipping;
 pub(crate) use shapes::{ShapeKey, ShapeMemo};
+pub(crate) use staircase::has_staircase;
 
 use crate::contour::Contour;
 use crate::decompose::Piece;
