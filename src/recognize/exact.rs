@@ -9,7 +9,7 @@
 
 use super::bareiss;
 use super::budget::{direct_solve_cost, rational_solve_cost, scan_cost, Meter, EXACT_SCAN_FACTOR};
-use super::gjk::{gjk, GjkOutcome, GjkParams};
+use super::gjk::{gjk, GjkOutcome, GjkParams, GjkRun};
 use super::proof::Extremes;
 use super::scalar::Scalar;
 use super::simplex::Simplex;
@@ -264,7 +264,10 @@ pub(crate) fn origin_in_hull(
     let mut list = rational_list(points);
     let mut simplex = Simplex::default();
     let params = metered_params(exact_params(list.dim()), list.dim(), 0, meter);
-    let (outcome, iterations) = gjk(&mut list, &mut simplex, &params);
+    let GjkRun {
+        outcome,
+        iterations,
+    } = gjk(&mut list, &mut simplex, &params);
     charge_exact(meter, &params, iterations, list.dim(), 0);
     match outcome {
         GjkOutcome::OriginInside => {
@@ -296,7 +299,10 @@ pub(crate) fn closest_direction(points: &[Vec<i64>], meter: &mut Meter) -> Optio
         ..exact_params(list.dim())
     };
     let params = metered_params(params, list.dim(), 0, meter);
-    let (outcome, iterations) = gjk(&mut list, &mut simplex, &params);
+    let GjkRun {
+        outcome,
+        iterations,
+    } = gjk(&mut list, &mut simplex, &params);
     charge_exact(meter, &params, iterations, list.dim(), 0);
     let GjkOutcome::Separated { direction, .. } = outcome else {
         return None;
@@ -380,7 +386,10 @@ pub(crate) fn decide_exactly(
         }
     }
     let params = metered_params(exact_params(n), n, scan, meter);
-    let (outcome, iterations) = gjk(&mut support, &mut simplex, &params);
+    let GjkRun {
+        outcome,
+        iterations,
+    } = gjk(&mut support, &mut simplex, &params);
     charge_exact(meter, &params, iterations, n, scan);
     if matches!(outcome, GjkOutcome::Stalled) && meter.exhausted() {
         return ExactDecision::OverBudget;

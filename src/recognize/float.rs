@@ -7,7 +7,7 @@ use super::exact::{
     barycentric_signed, closest_direction, origin_in_hull, reduce_by_gcd, round_to_certificate,
     verify_certificate,
 };
-use super::gjk::{gjk, GjkOutcome, GjkParams};
+use super::gjk::{gjk, GjkOutcome, GjkParams, GjkRun};
 use super::proof::Extremes;
 use super::simplex::Simplex;
 use super::support::{FloatSupport, Sets, SupportMap, Tag};
@@ -84,7 +84,10 @@ pub(super) fn float_decide(
         }
         let (cap, limited) = meter.iterations(per_iteration, FLOAT_PARAMS.max_iterations);
         params.max_iterations = cap;
-        let (outcome, iterations) = gjk(&mut support, simplex, &params);
+        let GjkRun {
+            outcome,
+            iterations,
+        } = gjk(&mut support, simplex, &params);
         stats.float_iterations += iterations as u64;
         meter.charge(iterations as u64 * per_iteration);
         if limited && iterations >= cap {

@@ -60,25 +60,38 @@ fn dot<T: Scalar>(a: &[T], b: &[T]) -> T {
     T::dot(a, b)
 }
 
+/// A run of [`gjk`]: how it ended, after how many iterations.
+#[derive(Clone, Debug)]
+pub(crate) struct GjkRun<T> {
+    pub(crate) outcome: GjkOutcome<T>,
+    pub(crate) iterations: usize,
+}
+
+fn ended<T>(outcome: GjkOutcome<T>, iterations: usize) -> GjkRun<T> {
+    GjkRun {
+        outcome,
+        iterations,
+    }
+}
+
 /// Runs the GJK variant from the given simplex (empty: start from any point of `D`).
-/// Returns the outcome and the number of iterations.
 pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
     support: &mut S,
     simplex: &mut Simplex<T>,
     params: &GjkParams,
-) -> (GjkOutcome<T>, usize) {
+) -> GjkRun<T> {
     let dim = support.dim();
     if let Err(outcome) = pick_point(support, simplex, params.eps) {
-        return (outcome, 0);
+        return ended(outcome, 0);
     }
     let mut previous = None::<T>;
     for iteration in 1..=params.max_iterations {
         let Some(x) = simplex.point(dim) else {
-            return (GjkOutcome::Stalled, iteration);
+            return ended(GjkOutcome::Stalled, iteration);
         };
         debug_assert!(x.iter().all(Scalar::is_finite), "non-finite GJK point");
         if !x.iter().all(Scalar::is_finite) {
-            return (GjkOutcome::Stalled, iteration);
+            return ended(GjkOutcome::Stalled, iteration);
         }
         let xx = dot(&x, &x);
         let max_w = simplex
@@ -87,15 +100,15 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
             .map(|v| dot(&v.point, &v.point))
             .fold(T::zero(), |m, n| if n > m { n } else { m });
         if xx <= T::tolerance(&max_w, params.eps_zero) {
-            return (GjkOutcome::OriginInside, iteration);
+            return ended(GjkOutcome::OriginInside, iteration);
         }
         // Every iteration must decrease ‖x‖² strictly; otherwise rounding is cycling.
         if previous.as_ref().is_some_and(|p| xx >= *p) {
-            return (GjkOutcome::Stalled, iteration);
+            return ended(GjkOutcome::Stalled, iteration);
         }
         previous = Some(xx.clone());
         let Some(s) = support.support_point(&x) else {
-            return (GjkOutcome::Empty, iteration);
+            return ended(GjkOutcome::Empty, iteration);
         };
         let xs = dot(&x, &s.point);
         let gap = xx.clone() - xs.clone();
@@ -104,7 +117,7 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         // would make the simplex affinely dependent.
         let converged = gap <= T::tolerance(&xx, params.eps) || simplex.contains_point(&s.point);
         if xs > T::zero() && (params.first_separation || converged) {
-            return (
+            return ended(
                 GjkOutcome::Separated {
                     direction: x,
                     margin: xs,
@@ -116,21 +129,21 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         if converged || simplex.contains(&s.tag) {
             // x is (numerically) the closest point but does not separate: x ≈ 0 in truth,
             // or rounding hides progress.
-            return (GjkOutcome::Stalled, iteration);
+            return ended(GjkOutcome::Stalled, iteration);
         }
         simplex.add_vertex(s);
         // closest_point_to_origin runs remove_vertices on the vertices it no longer needs.
         if simplex.len() > dim + 1 || simplex.closest_point_to_origin(params.eps).is_err() {
-            return (GjkOutcome::Stalled, iteration);
+            return ended(GjkOutcome::Stalled, iteration);
         }
         // n+1 affinely independent vertices, all with positive weight: the affine hull is the
         // whole space, so the closest point is the origin itself (in exact arithmetic; in f64
         // the witness check decides).
         if simplex.len() == dim + 1 {
-            return (GjkOutcome::OriginInside, iteration);
+            return ended(GjkOutcome::OriginInside, iteration);
         }
     }
-    (GjkOutcome::Stalled, params.max_iterations)
+    ended(GjkOutcome::Stalled, params.max_iterations)
 }
 
 /// pickPoint: the first `x`. An empty simplex starts from a point of `D` (the support
@@ -235,7 +248,7 @@ mod tests {
             max_iterations: 100,
             first_separation: false,
         };
-        match gjk(&mut list, &mut simplex, &params).0 {
+        match gjk(&mut list, &mut simplex, &params).outcome {
             GjkOutcome::Separated { direction, .. } => norm2(&direction).sqrt(),
             GjkOutcome::OriginInside => 0.0,
             GjkOutcome::Stalled => norm2(&simplex.point(points[0].len()).unwrap()).sqrt(),

@@ -54,7 +54,7 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
         first_separation: false,
         ..FLOAT_PARAMS
     };
-    let direction = match gjk(&mut support, &mut simplex, &params).0 {
+    let direction = match gjk(&mut support, &mut simplex, &params).outcome {
         GjkOutcome::Separated { direction, .. } => direction,
         // A run can stall short of the 1e-12 relative gap (near-degenerate sets, such as a
         // conic piece turning a right-angled corner: the comb's teeth stalled at 1e-9)
