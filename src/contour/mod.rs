@@ -37,6 +37,25 @@ pub struct Contour {
     pub closed: bool,
 }
 
+/// Contours of at most this many points are *tiny*: noise, halftones and dotted lines are
+/// made of them, and their shapes repeat (see [`Contour::tiny_shape`]).
+pub(crate) const TINY_POINTS: usize = 32;
+
+impl Contour {
+    /// The points relative to the first one, when the contour is tiny (1 to
+    /// [`TINY_POINTS`] points): what the per-shape memos of the decomposition and of the
+    /// outline key on. `None` for an empty or larger contour.
+    pub(crate) fn tiny_shape(&self) -> Option<Vec<(i32, i32)>> {
+        let first = *self.points.first()?;
+        (self.points.len() <= TINY_POINTS).then(|| {
+            self.points
+                .iter()
+                .map(|p| (p.x - first.x, p.y - first.y))
+                .collect()
+        })
+    }
+}
+
 /// Which connectivity, start points, orientation and point lists [`trace`] produces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Convention {

@@ -13,11 +13,8 @@ use super::Piece;
 use crate::contour::Contour;
 use crate::recognize::{Recognizer, Stats};
 
-/// Contours of at most this many points are decomposed once per shape.
-const TINY_POINTS: usize = 32;
-
-/// What decides a tiny contour's pieces: its points relative to the first one and whether
-/// its pieces may wrap round (see `wraps`).
+/// What decides a tiny contour's pieces: its [`Contour::tiny_shape`] and whether its pieces
+/// may wrap round (see `wraps`).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 struct ShapeKey {
     wraps: bool,
@@ -52,20 +49,11 @@ impl PieceMemo {
         rec: &mut Recognizer,
         decompose: impl FnOnce(&mut Recognizer) -> (usize, Vec<Piece>),
     ) -> (usize, Vec<Piece>) {
-        let Some(first) = contour.points.first().copied() else {
+        let Some(points) = contour.tiny_shape() else {
             return decompose(rec);
         };
-        if contour.points.len() > TINY_POINTS {
-            return decompose(rec);
-        }
-        let key = ShapeKey {
-            wraps,
-            points: contour
-                .points
-                .iter()
-                .map(|p| (p.x - first.x, p.y - first.y))
-                .collect(),
-        };
+        let key = ShapeKey { wraps, points };
+        let first = contour.points[0];
         let shift = |pieces: &[Piece], dx: i64, dy: i64| -> Vec<Piece> {
             pieces
                 .iter()

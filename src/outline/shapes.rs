@@ -25,10 +25,8 @@ use crate::curve::PathCommand;
 use crate::decompose::Piece;
 use crate::recognize::Extremes;
 
-/// Contours of at most this many points are drawn once per shape.
-pub(crate) const TINY_POINTS: usize = 32;
-
-/// Most shapes kept: beyond, new shapes are drawn where they are. Bounds the memory of an
+/// Most shapes kept (give or take a group of contours): beyond, new shapes are drawn where
+/// they are. Bounds the memory of an
 /// image whose tiny contours are all different: a drawing of at most 32 points takes a few
 /// hundred bytes (the memo held 33 MB on 2000² noise, against 350 MB for the whole run).
 const MAX_SHAPES: usize = 1 << 16;
@@ -53,20 +51,14 @@ struct PieceKey {
 }
 
 impl ShapeKey {
-    /// The key of a contour of at most [`TINY_POINTS`] points; `None` for a larger (or
+    /// The key of a tiny contour (see [`Contour::tiny_shape`]); `None` for a larger (or
     /// empty) one.
     pub(crate) fn of(contour: &Contour, pieces: &[Piece]) -> Option<ShapeKey> {
-        let points = &contour.points;
-        let first = *points.first()?;
-        if points.len() > TINY_POINTS {
-            return None;
-        }
+        let points = contour.tiny_shape()?;
+        let first = contour.points[0];
         Some(ShapeKey {
             hole: contour.hole,
-            points: points
-                .iter()
-                .map(|p| (p.x - first.x, p.y - first.y))
-                .collect(),
+            points,
             pieces: pieces
                 .iter()
                 .map(|p| PieceKey {
@@ -99,17 +91,15 @@ impl ShapeMemo {
         self.drawings.contains_key(key)
     }
 
-    /// Whether no more shapes are kept (new ones are then drawn where they are).
+    /// Whether no more shapes are to be kept (new ones are then drawn where they are).
     pub(crate) fn is_full(&self) -> bool {
         self.drawings.len() >= MAX_SHAPES
     }
 
-    /// Keeps `path`, the drawing of `contour` whose shape is `key` (ignored once
-    /// [`MAX_SHAPES`] are kept).
+    /// Keeps `path`, the drawing of `contour` whose shape is `key`. (The caller stops
+    /// asking once [`ShapeMemo::is_full`]: a group of contours started below the bound may
+    /// pass it by at most its own size, and then every shape it drew is served from here.)
     pub(crate) fn insert(&mut self, key: ShapeKey, contour: &Contour, path: &ContourPath) {
-        if self.is_full() {
-            return;
-        }
         let first = contour.points[0];
         let to_origin = -Vec2::new(f64::from(first.x), f64::from(first.y));
         self.drawings.insert(key, translated(path, to_origin));
@@ -145,7 +135,9 @@ fn translated(path: &ContourPath, v: Vec2) -> ContourPath {
                 }
             })
             .collect(),
-        ..path.clone()
+        max_fit_error: path.max_fit_error,
+        fallbacks: path.fallbacks,
+        joins: path.joins,
     }
 }
 

@@ -53,7 +53,7 @@ pub(crate) struct Counter {
 
 impl Counter {
     /// Ends the current run (counted if long enough).
-    pub(crate) fn end_run(&mut self) {
+    fn end_run(&mut self) {
         if self.run >= MIN_RUN {
             self.count.runs += 1;
             self.count.segments += self.run;
