@@ -33,6 +33,7 @@ mod builder;
 mod cracks;
 mod cut;
 mod joins;
+mod nearest;
 mod partition;
 mod path;
 mod render_check;
@@ -58,7 +59,8 @@ use crate::model::Basis;
 use builder::Builder;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
-use render_check::{finely_flattened, misplaced_pixels, nearest_points, points_near, Reference};
+use nearest::{nearest_points, points_near};
+use render_check::{finely_flattened, misplaced_pixels, Reference};
 use smooth::smooth_polygon;
 use stretch::{Drawing, Stretch, Stretcher, Unused};
 
