@@ -1,10 +1,11 @@
-//! Time per stage (load, trace, decompose, SVG with its render checks, writing) of each
-//! image, one thread, as a markdown table: where the whole-process time goes.
+//! Time per stage (load, trace, decompose, SVG with its render checks) of each image, as a
+//! markdown table: where the whole-process time goes.
 //!
-//! `cargo run --release --example stages -- [--model M] [--runs N] IMAGE…`
+//! `cargo run --release --example stages -- [--model M] [--runs N] [--threads T] IMAGE…`
 //!
-//! Each stage's figure is the median of N runs (default 5) in one process; the last row sums
-//! the images. The stages are the CLI's (`vectorize`) without its fidelity report.
+//! Each stage's figure is the median of N runs (default 5) in one process, on T worker
+//! threads (default 1); the last row sums the images. The stages are the CLI's
+//! (`vectorize`) without its fidelity report.
 
 use layertrace::{
     decompose, load_path, svg_document, trace, Convention, LoadOptions, Model, OutlierRule,
@@ -21,17 +22,24 @@ fn median(mut v: Vec<f64>) -> f64 {
 fn main() {
     let mut model = Model::Conic;
     let mut runs = 5usize;
+    let mut threads = 1usize;
     let mut images: Vec<PathBuf> = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--model" => model = args.next().and_then(|m| m.parse().ok()).expect("--model M"),
             "--runs" => runs = args.next().and_then(|n| n.parse().ok()).expect("--runs N"),
+            "--threads" => {
+                threads = args
+                    .next()
+                    .and_then(|n| n.parse().ok())
+                    .expect("--threads T")
+            }
             _ => images.push(PathBuf::from(a)),
         }
     }
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
+        .num_threads(threads)
         .build()
         .expect("thread pool");
     println!("| image | contour px | load ms | trace ms | decompose ms | svg ms | total ms |");

@@ -287,9 +287,15 @@ pub fn decompose_points_within(
     pieces
 }
 
-/// Contours decomposed per parallel task: statistics are kept per task, not per contour
-/// (two million tiny contours would otherwise hold 200 MB of them).
+/// Most contours decomposed per parallel task: statistics are kept per task, not per
+/// contour (two million tiny contours would otherwise hold 200 MB of them).
 const CONTOURS_PER_TASK: usize = 256;
+
+/// Fewest tasks the contours are split into (when there are that many contours), so that
+/// threads share the work evenly: 350 contours in tasks of 256 left one of two threads a
+/// quarter of the work (the 3000² sample decomposed 1.31× faster on 2 threads, now 1.9×).
+/// The pieces do not depend on it.
+const MIN_TASKS: usize = 64;
 
 /// Decomposes every contour with `model`, contours in parallel (rayon), within the default
 /// [`WorkBudget`]; the result does not depend on the number of threads.
@@ -383,8 +389,12 @@ pub(crate) fn decompose_reporting(
         Cover::Greedy => (0, decompose_points_within(&c.points, rec, rule, budget)),
         _ => optimal_points(&c.points, wraps(c), rec, rule, budget),
     };
+    let per_task = contours
+        .len()
+        .div_ceil(MIN_TASKS)
+        .clamp(1, CONTOURS_PER_TASK);
     let results: Vec<(Vec<Rotated>, Stats)> = contours
-        .par_chunks(CONTOURS_PER_TASK)
+        .par_chunks(per_task)
         .map_init(
             || Recognizer::new(basis.clone(), &[0, 0]),
             |rec, chunk| match rec.as_mut() {
