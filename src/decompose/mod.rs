@@ -297,6 +297,10 @@ const CONTOURS_PER_TASK: usize = 256;
 /// The pieces do not depend on it.
 const MIN_TASKS: usize = 64;
 
+/// Up to this many contours, they are decomposed largest first (sorting millions of noise
+/// specks would cost more than it balances).
+const SORTED_CONTOURS: usize = 1 << 16;
+
 /// Decomposes every contour with `model`, contours in parallel (rayon), within the default
 /// [`WorkBudget`]; the result does not depend on the number of threads.
 ///
@@ -393,8 +397,15 @@ pub(crate) fn decompose_reporting(
         .len()
         .div_ceil(MIN_TASKS)
         .clamp(1, CONTOURS_PER_TASK);
-    let results: Vec<(Vec<Rotated>, Stats)> = contours
+    // Largest contours first, a task per job, where there are few enough to sort: no
+    // thread is left alone with a large contour at the end. Results go back in order.
+    let mut order: Vec<usize> = (0..contours.len()).collect();
+    if contours.len() <= SORTED_CONTOURS {
+        order.sort_by_key(|&k| std::cmp::Reverse(contours[k].points.len()));
+    }
+    let results: Vec<(Vec<Rotated>, Stats)> = order
         .par_chunks(per_task)
+        .with_max_len(1)
         .map_init(
             || Recognizer::new(basis.clone(), &[0, 0]),
             |rec, chunk| match rec.as_mut() {
@@ -404,7 +415,10 @@ pub(crate) fn decompose_reporting(
                     let mut memo = shapes::PieceMemo::default();
                     let pieces = chunk
                         .iter()
-                        .map(|c| memo.pieces(c, wraps(c), rec, |rec| one(c, rec)))
+                        .map(|&k| {
+                            let c = &contours[k];
+                            memo.pieces(c, wraps(c), rec, |rec| one(c, rec))
+                        })
                         .collect();
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
                     done(n);
@@ -422,14 +436,15 @@ pub(crate) fn decompose_reporting(
         .collect();
     let mut contours = contours;
     let mut stats = Stats::default();
-    let mut pieces = Vec::with_capacity(contours.len());
+    let mut pieces = vec![Vec::new(); contours.len()];
+    let mut at = order.iter();
     for (p, s) in results {
         stats += &s;
-        for (rotation, p) in p {
+        for ((rotation, p), &k) in p.into_iter().zip(&mut at) {
             if rotation > 0 {
-                contours[pieces.len()].points.rotate_left(rotation);
+                contours[k].points.rotate_left(rotation);
             }
-            pieces.push(p);
+            pieces[k] = p;
         }
     }
     Decomposition {

@@ -442,10 +442,17 @@ pub(crate) fn path_data(
                 memo.insert(key.clone(), &group[k], path);
             }
         }
-        let parts: Vec<(String, CommandCounts, ContourPath)> = group
+        // Largest contours first, one contour per job: no thread is left alone with a
+        // large contour at the end (the 3000² sample's drawing on 2 threads: 79 -> 75 ms,
+        // 146 ms on one; 1000² noise: 1.54 -> 1.39 s). The parts go back in the contours'
+        // order.
+        let mut order: Vec<usize> = (0..group.len()).collect();
+        order.sort_by_key(|&k| std::cmp::Reverse(group[k].points.len()));
+        let mut parts: Vec<(usize, (String, CommandCounts, ContourPath))> = order
             .par_iter()
-            .enumerate()
-            .map(|(k, contour)| {
+            .with_max_len(1)
+            .map(|&k| {
+                let contour = &group[k];
                 let pieces = pieces_of(k);
                 let exact = || {
                     keys[k]
@@ -475,11 +482,12 @@ pub(crate) fn path_data(
                 // Only the counts are kept: the commands are written.
                 let counts = cp.counts();
                 cp.commands = Vec::new();
-                (data, counts, cp)
+                (k, (data, counts, cp))
             })
             .collect();
+        parts.sort_unstable_by_key(|&(k, _)| k);
         done(g * CONTOURS_PER_GROUP + group.len());
-        for (data, counts, cp) in parts {
+        for (_, (data, counts, cp)) in parts {
             commands += &counts;
             fallbacks += &cp.fallbacks;
             joins += &cp.joins;
