@@ -102,7 +102,8 @@ fn pool_and_progress() {
             .iter()
             .all(|p| p.total == contours && p.done <= p.total));
     }
-    // One thread: each stage counts up, and is told at most once per chunk of contours.
+    // One thread: each stage counts up, and is told at most once per task or group of
+    // contours.
     for stage in [Stage::Decompose, Stage::Draw] {
         let done: Vec<u64> = seen
             .iter()
@@ -111,7 +112,10 @@ fn pool_and_progress() {
             .collect();
         assert!(done.windows(2).all(|w| w[0] < w[1]), "{stage:?}: {done:?}");
     }
-    assert!(calls.load(Ordering::Relaxed) <= 2 * (contours / 256 + 1));
+    // The decomposition tells once per task (at most 256 contours, and at least 64 tasks
+    // when there are that many contours), the drawing once per group of 4096 contours.
+    let tasks = contours.min(64) + contours / 256 + 1;
+    assert!(calls.load(Ordering::Relaxed) <= tasks + contours / 4096 + 1);
 }
 
 #[test]
