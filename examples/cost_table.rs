@@ -1,11 +1,14 @@
 //! Time per stage on the adversarial inputs of issue 13 (checkerboard of single pixels,
-//! 50 % noise, one-pixel-wide spirals of growing size), one thread. Prints a markdown table:
-//! contour points, pieces, milliseconds per stage, and nanoseconds per contour point of the
+//! 50 % noise, one-pixel-wide spirals of growing size) or on image files, one thread by
+//! default. Prints a markdown table: contour points, pieces, milliseconds per stage (load:
+//! decoding a file or making the input), and nanoseconds per contour point of the
 //! decomposition and of the SVG export (flat when the cost per contour pixel is bounded).
 //!
-//! `cargo run --release --example cost_table [-- INPUT…]` with INPUT one of `checker:N`,
-//! `noise:N`, `spiral:N` (N the image side), optionally `@MODEL` (`noise:400@poly:6`).
-//! Default: `spiral:501 spiral:1001 spiral:2001 noise:400 noise:400@poly:6 checker:2000`.
+//! `cargo run --release --example cost_table [-- [--runs N] [--threads T] INPUT…]` with INPUT
+//! one of `checker:N`, `noise:N`, `spiral:N` (N the image side), optionally `@MODEL`
+//! (`noise:400@poly:6`). Default: `spiral:501 spiral:1001 spiral:2001 noise:400
+//! noise:400@poly:6 checker:2000`. `--runs N`: each stage's median of N runs (default 1);
+//! `--threads T`: T worker threads (default 1), to see which stage scales.
 //!
 //! With `--memory` first, each input runs in a child process of its own and the table is
 //! of memory instead: the peak resident memory after the mask was built (Linux `VmHWM`,
@@ -91,6 +94,20 @@ fn main() {
     if memory {
         inputs.remove(0);
     }
+    let (mut runs, mut threads) = (1usize, 1usize);
+    while let Some(flag @ ("--runs" | "--threads")) = inputs.first().map(String::as_str) {
+        let value = inputs
+            .get(1)
+            .and_then(|v| v.parse().ok())
+            .filter(|&v| v > 0);
+        let value = value.unwrap_or_else(|| panic!("{flag} needs a positive number"));
+        if flag == "--runs" {
+            runs = value;
+        } else {
+            threads = value;
+        }
+        inputs.drain(..2);
+    }
     if inputs.is_empty() {
         inputs = [
             "spiral:501",
@@ -117,49 +134,68 @@ fn main() {
         return;
     }
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
+        .num_threads(threads)
         .build()
         .expect("thread pool");
     println!(
-        "| input | model | contours | contour points | pieces | budget cuts | work units (M) | trace ms | decompose ms | decompose ns/unit | svg ms | fidelity ms | decompose ns/point | svg ns/point |"
+        "| input | model | contours | contour points | pieces | budget cuts | work units (M) | load ms | trace ms | decompose ms | decompose ns/unit | svg ms | fidelity ms | decompose ns/point | svg ns/point |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for input in &inputs {
         let (image, model) = input.split_once('@').unwrap_or((input, "conic"));
         let model: Model = model.parse().expect("model");
-        let mask = mask_of(image).expect("checker:N, noise:N, spiral:N or an image");
-        let (w, h) = (mask.width(), mask.height());
-        pool.install(|| {
+        // Seconds per stage, one vector per stage, one entry per run.
+        let mut times: [Vec<f64>; 5] = Default::default();
+        let mut last = None;
+        for _ in 0..runs {
             let t = Instant::now();
-            let contours = trace(&mask, Convention::Default);
-            let t_trace = t.elapsed().as_secs_f64();
-            let points: usize = contours.iter().map(|c| c.points.len()).sum();
-            let count = contours.len();
-            let t = Instant::now();
-            let d = decompose(contours, model, OutlierRule::NotInPiece);
-            let t_dec = t.elapsed().as_secs_f64();
-            let t = Instant::now();
-            let svg = svg_document(&d, w, h, &SvgOptions::default());
-            let t_svg = t.elapsed().as_secs_f64();
-            let t = Instant::now();
-            let f = fidelity(&svg.svg, &mask).expect("rasterize");
-            let t_fid = t.elapsed().as_secs_f64();
-            let _ = f;
-            println!(
-                "| {image} | {model} | {count} | {points} | {} | {} | {:.1} | {:.0} | {:.0} | {:.2} | {:.0} | {:.0} | {:.0} | {:.0} |",
-                d.piece_count(),
-                budget_cuts(&d),
-                d.stats.work as f64 / 1e6,
-                t_trace * 1e3,
-                t_dec * 1e3,
-                t_dec * 1e9 / d.stats.work.max(1) as f64,
-                t_svg * 1e3,
-                t_fid * 1e3,
-                t_dec * 1e9 / points.max(1) as f64,
-                t_svg * 1e9 / points.max(1) as f64,
-            );
-        });
+            let mask = mask_of(image).expect("checker:N, noise:N, spiral:N or an image");
+            times[0].push(t.elapsed().as_secs_f64());
+            let (w, h) = (mask.width(), mask.height());
+            pool.install(|| {
+                let t = Instant::now();
+                let contours = trace(&mask, Convention::Default);
+                times[1].push(t.elapsed().as_secs_f64());
+                let points: usize = contours.iter().map(|c| c.points.len()).sum();
+                let count = contours.len();
+                let t = Instant::now();
+                let d = decompose(contours, model, OutlierRule::NotInPiece);
+                times[2].push(t.elapsed().as_secs_f64());
+                let t = Instant::now();
+                let svg = svg_document(&d, w, h, &SvgOptions::default());
+                times[3].push(t.elapsed().as_secs_f64());
+                let t = Instant::now();
+                let f = fidelity(&svg.svg, &mask).expect("rasterize");
+                times[4].push(t.elapsed().as_secs_f64());
+                let _ = f;
+                last = Some((count, points, d));
+            });
+        }
+        let Some((count, points, d)) = last else {
+            continue;
+        };
+        let [t_load, t_trace, t_dec, t_svg, t_fid] = times.map(median);
+        println!(
+            "| {image} | {model} | {count} | {points} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.1} | {:.1} | {:.0} | {:.0} |",
+            d.piece_count(),
+            budget_cuts(&d),
+            d.stats.work as f64 / 1e6,
+            t_load * 1e3,
+            t_trace * 1e3,
+            t_dec * 1e3,
+            t_dec * 1e9 / d.stats.work.max(1) as f64,
+            t_svg * 1e3,
+            t_fid * 1e3,
+            t_dec * 1e9 / points.max(1) as f64,
+            t_svg * 1e9 / points.max(1) as f64,
+        );
     }
+}
+
+/// The median of `v` (the upper one of an even count); 0 for none.
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
 fn budget_cuts(d: &layertrace::Decomposition) -> usize {
