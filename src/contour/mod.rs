@@ -56,6 +56,15 @@ impl Contour {
     }
 }
 
+/// Indices of `contours` by decreasing number of points, equal ones in their order: how the
+/// parallel stages take them, so that no thread is left alone with a large contour at the
+/// end (results go back in the contours' order).
+pub(crate) fn largest_first(contours: &[Contour]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..contours.len()).collect();
+    order.sort_by_key(|&k| std::cmp::Reverse(contours[k].points.len()));
+    order
+}
+
 /// Which connectivity, start points, orientation and point lists [`trace`] produces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Convention {

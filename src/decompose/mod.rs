@@ -37,7 +37,7 @@
 //! as any other, only the maximality of the greedy is lost. The default budget is far above
 //! what the pieces of the bundled samples need in the line, circle and conic models.
 
-use crate::contour::Contour;
+use crate::contour::{largest_first, Contour};
 use crate::model::{Basis, Model};
 use crate::pixel::{Pixel, PixelSet};
 use crate::recognize::{Certificate, Recognizer, Stats};
@@ -397,12 +397,12 @@ pub(crate) fn decompose_reporting(
         .len()
         .div_ceil(MIN_TASKS)
         .clamp(1, CONTOURS_PER_TASK);
-    // Largest contours first, a task per job, where there are few enough to sort: no
-    // thread is left alone with a large contour at the end. Results go back in order.
-    let mut order: Vec<usize> = (0..contours.len()).collect();
-    if contours.len() <= SORTED_CONTOURS {
-        order.sort_by_key(|&k| std::cmp::Reverse(contours[k].points.len()));
-    }
+    // Largest contours first where there are few enough to sort, a task per job.
+    let order: Vec<usize> = if contours.len() <= SORTED_CONTOURS {
+        largest_first(&contours)
+    } else {
+        (0..contours.len()).collect()
+    };
     let results: Vec<(Vec<Rotated>, Stats)> = order
         .par_chunks(per_task)
         .with_max_len(1)

@@ -2,21 +2,23 @@
 
 use crate::pixel::Pixel;
 
+/// The squared distance between two pixels.
+fn distance2(p: Pixel, q: Pixel) -> i64 {
+    let (dx, dy) = (i64::from(p.x - q.x), i64::from(p.y - q.y));
+    dx * dx + dy * dy
+}
+
 /// Indices of the contour points nearest to each of `pixels` (each index once, ascending).
-/// With the contour's crack polygon as the reference of [`super::render_check::misplaced_pixels`] — exactly the
-/// pixels the contour encloses — a path that differs nowhere paints exactly those, so the
-/// nonzero sum of all contours' paths is the image: this catches a curve cutting a pixel
-/// of a neighbouring contour too, not only the contour's own pixels and the background
-/// beside them.
+/// With the contour's crack polygon as the reference of
+/// [`super::render_check::misplaced_pixels`] — exactly the pixels the contour encloses — a
+/// path that differs nowhere paints exactly those, so the nonzero sum of all contours'
+/// paths is the image: this catches a curve cutting a pixel of a neighbouring contour too,
+/// not only the contour's own pixels and the background beside them.
 pub(crate) fn nearest_points(points: &[Pixel], pixels: &[Pixel]) -> Vec<usize> {
-    let d2 = |p: Pixel, q: Pixel| {
-        let (dx, dy) = (i64::from(p.x - q.x), i64::from(p.y - q.y));
-        dx * dx + dy * dy
-    };
     let mut out: Vec<usize> = if pixels.len() * points.len() <= NEAREST_SCAN {
         pixels
             .iter()
-            .filter_map(|&q| (0..points.len()).min_by_key(|&i| d2(points[i], q)))
+            .filter_map(|&q| (0..points.len()).min_by_key(|&i| distance2(points[i], q)))
             .collect()
     } else {
         let cells = Cells::new(points);
@@ -85,9 +87,7 @@ impl Cells {
                 while cx <= c.x + r {
                     if let Some(ids) = self.map.get(&Pixel::new(cx, cy)) {
                         for &i in ids {
-                            let p = points[i];
-                            let (dx, dy) = (i64::from(p.x - q.x), i64::from(p.y - q.y));
-                            let key = (dx * dx + dy * dy, i);
+                            let key = (distance2(points[i], q), i);
                             if best.is_none_or(|b| key < b) {
                                 best = Some(key);
                             }
