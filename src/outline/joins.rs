@@ -30,7 +30,7 @@ use super::vertices::{shared_vertex, Sides};
 use crate::curve::{intersect_near, level_curve_path, project, LevelPath, PathCommand};
 use crate::pixel::Pixel;
 use kurbo::{BezPath, Point};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// Largest distance (pixels) from the middle of two adjacent end pixels' centres to the
 /// junction of their pieces' curves, or to the projection used instead.
@@ -53,6 +53,9 @@ type Drawn = Option<LevelPath>;
 pub(crate) struct Memo {
     intersections: HashMap<(usize, usize), Option<Point>>,
     paths: HashMap<(usize, [u64; 4]), Drawn>,
+    /// The projection of a target point on a stretch's curve, by stretch id and target
+    /// (the same junctions are projected again in every drawing).
+    projections: HashMap<(usize, [u64; 2]), Option<Point>>,
     /// The centres each straight segment separates, by stretch id.
     sides: HashMap<usize, Sides>,
 }
@@ -161,15 +164,21 @@ pub(crate) fn build(
                 bridged[j] = true;
                 (mid, mid)
             };
+            let mut project = |id: usize, poly, target: Point| {
+                *memo
+                    .projections
+                    .entry((id, [target.x.to_bits(), target.y.to_bits()]))
+                    .or_insert_with(|| project(poly, target, JUNCTION_MAX_DISTANCE))
+            };
             match (&sj.poly, use_curve[j]) {
-                (Some(pa), true) => match project(pa, end_target, JUNCTION_MAX_DISTANCE) {
+                (Some(pa), true) => match project(sj.id, pa, end_target) {
                     Some(x) => ends[j] = x,
                     None => lost.push(j),
                 },
                 _ => ends[j] = cracks(j).last().copied().unwrap_or(mid),
             }
             match (&sk.poly, use_curve[k]) {
-                (Some(pb), true) => match project(pb, start_target, JUNCTION_MAX_DISTANCE) {
+                (Some(pb), true) => match project(sk.id, pb, start_target) {
                     Some(x) => starts[k] = x,
                     None => lost.push(k),
                 },
