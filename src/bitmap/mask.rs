@@ -222,19 +222,20 @@ impl Mask {
     }
 }
 
-/// A 70 × 70 test mask: the 4 × 3 blob `bits` (row-major) at `(2, 2)` and again at a place
-/// derived from each offset, the copies at least 2 pixels apart (for the tests of the
-/// per-shape memos of the decomposition and the outline).
+/// An 80 × 80 test mask: the 4 × 3 blob `bits` (row-major) at `(8, 8)` and again at a place
+/// derived from each offset, the copies at least 2 pixels apart and 8 from the border (for
+/// the tests of the per-shape memos of the decomposition and the outline, which draws
+/// shapes near the border where they are).
 #[cfg(test)]
 pub(crate) fn repeated_blob(bits: &[bool], offsets: &[(u32, u32)]) -> Mask {
     let blob = |u: u32, v: u32| u < 4 && v < 3 && bits[(v * 4 + u) as usize];
-    let mut origins = vec![(2u32, 2u32)];
+    let mut origins = vec![(8u32, 8u32)];
     origins.extend(
         offsets
             .iter()
-            .map(|&(x, y)| (2 + 6 * (x / 6 + 1), 2 + 5 * (y / 5))),
+            .map(|&(x, y)| (8 + 6 * (x / 6 + 1), 8 + 5 * (y / 5))),
     );
-    Mask::from_fn(70, 70, |x, y| {
+    Mask::from_fn(80, 80, |x, y| {
         origins
             .iter()
             .any(|&(ox, oy)| x >= ox && y >= oy && blob(x - ox, y - oy))

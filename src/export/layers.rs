@@ -56,7 +56,7 @@ pub fn layers_document(
     margin: u32,
     opts: &SvgOptions,
 ) -> SvgOutput {
-    let outline = outline_options(opts);
+    let outline = outline_options(opts, width, height, margin);
     let mut svg = String::new();
     let _ = writeln!(
         svg,

@@ -304,7 +304,7 @@ pub(crate) fn svg_document_reporting(
     band: Option<&Band>,
     done: &(dyn Fn(usize) + Sync),
 ) -> SvgOutput {
-    let outline = outline_options(opts);
+    let outline = outline_options(opts, width, height, 0);
     let header = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
          height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
@@ -324,8 +324,15 @@ pub(crate) fn svg_document_reporting(
     paths.into_output(svg)
 }
 
-/// The outline options of [`SvgOptions`].
-pub(crate) fn outline_options(opts: &SvgOptions) -> OutlineOptions {
+/// The outline options of [`SvgOptions`] for a `width` × `height` document whose contours
+/// are in the coordinates of the image padded by `margin` pixels.
+pub(crate) fn outline_options(
+    opts: &SvgOptions,
+    width: u32,
+    height: u32,
+    margin: u32,
+) -> OutlineOptions {
+    let m = f64::from(margin);
     let grid = opts.grid.min(MAX_GRID);
     OutlineOptions {
         tolerance: opts.tolerance,
@@ -341,6 +348,12 @@ pub(crate) fn outline_options(opts: &SvgOptions) -> OutlineOptions {
         // image left 26 px wrong in Chromium on the 27 shared samples instead of 12 (conic),
         // for 14% less time.
         clipping: EdgeClipping::Unknown,
+        canvas: Some(kurbo::Rect::new(
+            m,
+            m,
+            m + f64::from(width),
+            m + f64::from(height),
+        )),
     }
 }
 
@@ -421,7 +434,7 @@ pub(crate) fn path_data(
             .enumerate()
             .map(|(k, c)| {
                 (band.is_none() && !memo.is_full())
-                    .then(|| ShapeKey::of(c, pieces_of(k)))
+                    .then(|| ShapeKey::of(c, pieces_of(k), outline.canvas))
                     .flatten()
             })
             .collect();

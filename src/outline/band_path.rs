@@ -165,10 +165,11 @@ pub(crate) fn band_contour_path(
             grid,
         );
         let (start, commands, items) = draw(&vs, &corners, &cells, &no_merge, nu, grid);
-        let wrong: Vec<_> = misplaced_pixels(&reference, start, &commands, opts.clipping)
-            .into_iter()
-            .filter(|q| !band.free(i64::from(q.x), i64::from(q.y)))
-            .collect();
+        let wrong: Vec<_> =
+            misplaced_pixels(&reference, start, &commands, opts.clipping, opts.canvas)
+                .into_iter()
+                .filter(|q| !band.free(i64::from(q.x), i64::from(q.y)))
+                .collect();
         if wrong.is_empty() {
             let out = ContourPath {
                 start,

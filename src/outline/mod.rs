@@ -88,6 +88,11 @@ pub struct OutlineOptions {
     /// runs when the document's path reaches the pixmap's border); [`EdgeClipping::Unknown`]
     /// checks curves both ways.
     pub clipping: EdgeClipping,
+    /// The document's pixmap in the contours' coordinates (whole pixels), or `None` when
+    /// every path stays well inside it. A path that crosses its border is checked as
+    /// tiny-skia draws it there: its edge clipper cuts a curve where it crosses the border,
+    /// which moves the chords of what remains; pixels outside are not checked.
+    pub canvas: Option<kurbo::Rect>,
 }
 
 impl Default for OutlineOptions {
@@ -97,6 +102,7 @@ impl Default for OutlineOptions {
             min_clearance: DEFAULT_MIN_CLEARANCE,
             grid: 4,
             clipping: EdgeClipping::Unknown,
+            canvas: None,
         }
     }
 }
@@ -214,11 +220,18 @@ pub fn contour_path(
                 let c = cracks_path(points);
                 Reference::new(c.start, &c.commands)
             });
-            let mut wrong = misplaced_pixels(reference, path.start, &path.commands, opts.clipping);
+            let mut wrong = misplaced_pixels(
+                reference,
+                path.start,
+                &path.commands,
+                opts.clipping,
+                opts.canvas,
+            );
             if wrong.is_empty() {
                 // Exact in tiny-skia; also with the true curves (other renderers).
                 if let Some(fine) = finely_flattened(path.start, &path.commands) {
-                    wrong = misplaced_pixels(reference, path.start, &fine, EdgeClipping::Never);
+                    wrong =
+                        misplaced_pixels(reference, path.start, &fine, EdgeClipping::Never, None);
                 }
             }
             if wrong.is_empty() {
@@ -231,6 +244,7 @@ pub fn contour_path(
                         reference,
                         grid,
                         opts.clipping,
+                        opts.canvas,
                     );
                 }
                 return finish(path, &stretches, fallbacks);

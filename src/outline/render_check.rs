@@ -3,7 +3,7 @@
 
 use crate::curve::PathCommand;
 use crate::pixel::Pixel;
-use kurbo::Point;
+use kurbo::{Point, Rect};
 use std::cell::RefCell;
 
 thread_local! {
@@ -101,7 +101,8 @@ impl Reference {
 /// The pixels whose centre the closed path `M start commands Z` winds round differently from
 /// `reference` (nonzero rule: 0 outside the reference, its orientation `s` inside), as
 /// tiny-skia draws it without anti-aliasing (resvg under `shape-rendering="crispEdges"`),
-/// with curves cut as `clipping` says (both ways for [`EdgeClipping::Unknown`]).
+/// with curves cut as `clipping` says (both ways for [`EdgeClipping::Unknown`]), within
+/// the document's pixmap `canvas` (in the contour's coordinates; `None`: far away).
 ///
 /// # One fill
 /// A path can paint the right pixels alone and still be wrong in the document: a twisted
@@ -125,6 +126,7 @@ pub(crate) fn misplaced_pixels(
     start: Point,
     commands: &[PathCommand],
     clipping: EdgeClipping,
+    canvas: Option<Rect>,
 ) -> Vec<Pixel> {
     let (mut lo, mut hi) = (reference.lo, reference.hi);
     let mut grow = |p: Point| {
@@ -156,10 +158,22 @@ pub(crate) fn misplaced_pixels(
         lo = reference.lo;
         hi = reference.hi;
     }
-    let x0 = lo.x.floor() as i64 - 2;
-    let y0 = lo.y.floor() as i64 - 2;
-    let x1 = hi.x.ceil() as i64 + 2;
-    let y1 = hi.y.ceil() as i64 + 2;
+    let mut x0 = lo.x.floor() as i64 - 2;
+    let mut y0 = lo.y.floor() as i64 - 2;
+    let mut x1 = hi.x.ceil() as i64 + 2;
+    let mut y1 = hi.y.ceil() as i64 + 2;
+    // The window ends at the pixmap's border: tiny-skia clips the path there as it does in
+    // the document (a curve crossing the border is cut at the crossing, which moves its
+    // chords), and pixels outside are never drawn.
+    if let Some(c) = canvas {
+        x0 = x0.max(c.x0.ceil() as i64);
+        y0 = y0.max(c.y0.ceil() as i64);
+        x1 = x1.min(c.x1.floor() as i64);
+        y1 = y1.min(c.y1.floor() as i64);
+        if x1 <= x0 || y1 <= y0 {
+            return Vec::new();
+        }
+    }
     let (width, height) = (x1 - x0, y1 - y0);
     let everywhere = || -> Vec<Pixel> {
         let mut all = Vec::new();
@@ -344,7 +358,7 @@ mod tests {
     /// The pixels the path paints alone: misplaced against an empty reference.
     fn painted(start: Point, cmds: &[PathCommand]) -> BTreeSet<(i32, i32)> {
         let nothing = Reference::new(start, &[]);
-        misplaced_pixels(&nothing, start, cmds, EdgeClipping::Never)
+        misplaced_pixels(&nothing, start, cmds, EdgeClipping::Never, None)
             .into_iter()
             .map(|q| (q.x, q.y))
             .collect()
@@ -515,7 +529,7 @@ mod tests {
         let mut differing_somewhere = 0;
         for (k, (start, cmds)) in paths.iter().enumerate() {
             let got: BTreeSet<(i32, i32)> =
-                misplaced_pixels(&reference, *start, cmds, EdgeClipping::Never)
+                misplaced_pixels(&reference, *start, cmds, EdgeClipping::Never, None)
                     .into_iter()
                     .map(|q| (q.x, q.y))
                     .collect();

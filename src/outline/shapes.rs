@@ -13,7 +13,9 @@
 //! point stays on the `2^-grid` grid, where the move is exact in `f64` and in tiny-skia's
 //! fixed point, so each copy is exact in tiny-skia where it lands. (A drawing made afresh
 //! at another place may differ in floating-point detail, since the curves are expanded at
-//! absolute coordinates: it would be another exact drawing.)
+//! absolute coordinates: it would be another exact drawing.) Contours near the border of
+//! the document's pixmap are drawn where they are: there tiny-skia clips the path at the
+//! border, which no move preserves.
 
 use std::collections::HashMap;
 
@@ -30,6 +32,11 @@ use crate::recognize::Extremes;
 /// image whose tiny contours are all different: a drawing of at most 32 points takes a few
 /// hundred bytes (the memo held 33 MB on 2000² noise, against 350 MB for the whole run).
 const MAX_SHAPES: usize = 1 << 16;
+
+/// Distance (pixels) from the pixmap's border within which a tiny contour is not memoized:
+/// its drawing stays within 2 px of its pixels ([`super::joins::STRAY_MARGIN`]) and the
+/// render check looks 2 px farther, so beyond 5 px the border plays no part.
+const CANVAS_MARGIN: f64 = 6.0;
 
 /// What decides a tiny contour's drawing: its points relative to the first one, whether it
 /// is a hole, and its pieces (bounds and certificates, origins relative to that point).
@@ -52,10 +59,25 @@ struct PieceKey {
 
 impl ShapeKey {
     /// The key of a tiny contour (see [`Contour::tiny_shape`]); `None` for a larger (or
-    /// empty) one.
-    pub(crate) fn of(contour: &Contour, pieces: &[Piece]) -> Option<ShapeKey> {
+    /// empty) one, or one within [`CANVAS_MARGIN`] of the border of `canvas` (the
+    /// document's pixmap, see [`OutlineOptions::canvas`](super::OutlineOptions::canvas)).
+    pub(crate) fn of(
+        contour: &Contour,
+        pieces: &[Piece],
+        canvas: Option<kurbo::Rect>,
+    ) -> Option<ShapeKey> {
         let points = contour.tiny_shape()?;
         let first = contour.points[0];
+        if let Some(c) = canvas {
+            let inner = c.inset(-CANVAS_MARGIN);
+            let inside = contour.points.iter().all(|p| {
+                let (x, y) = (f64::from(p.x), f64::from(p.y));
+                x >= inner.x0 && y >= inner.y0 && x + 1.0 <= inner.x1 && y + 1.0 <= inner.y1
+            });
+            if !inside {
+                return None;
+            }
+        }
         Some(ShapeKey {
             hole: contour.hole,
             points,
@@ -162,7 +184,7 @@ mod tests {
         ) {
             let mask = repeated_blob(&bits, &offsets);
             let d = decompose(trace(&mask, Convention::Default), model, OutlierRule::NotInPiece);
-            let out = svg_document(&d, 70, 70, &SvgOptions::default());
+            let out = svg_document(&d, 80, 80, &SvgOptions::default());
             let r = fidelity(&out.svg, &mask).unwrap();
             prop_assert_eq!(r.differing, 0, "{}", out.svg);
             // The copies are the same drawing: after each subpath's absolute `M x y` the

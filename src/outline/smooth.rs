@@ -83,6 +83,7 @@ pub(crate) fn smooth_polygon(
     reference: &Reference,
     grid: u8,
     clipping: EdgeClipping,
+    canvas: Option<kurbo::Rect>,
 ) -> Vec<PathCommand> {
     let n = commands.len();
     let snap = Builder::new(grid);
@@ -145,13 +146,14 @@ pub(crate) fn smooth_polygon(
             break;
         }
         let out = assemble(&merges);
-        let mut bad = misplaced_pixels(reference, start, &out, clipping);
+        let mut bad = misplaced_pixels(reference, start, &out, clipping, canvas);
         if let Some(fine) = finely_flattened(start, &out) {
             bad.extend(misplaced_pixels(
                 reference,
                 start,
                 &fine,
                 EdgeClipping::Never,
+                None,
             ));
         }
         if bad.is_empty() {

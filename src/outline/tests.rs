@@ -58,7 +58,14 @@ fn check(mask: &Mask, model: Model, grid: u8) -> (usize, usize) {
         }
         let reference = cracks_path(&c.points);
         let reference = Reference::new(reference.start, &reference.commands);
-        bad += misplaced_pixels(&reference, cp.start, &cp.commands, EdgeClipping::Unknown).len();
+        bad += misplaced_pixels(
+            &reference,
+            cp.start,
+            &cp.commands,
+            EdgeClipping::Unknown,
+            None,
+        )
+        .len();
     }
     (bad, off_grid)
 }

@@ -35,7 +35,9 @@ pub(super) fn run(
     let outline = options
         .svg
         .as_ref()
-        .map(crate::export::svg::outline_options)
+        .map(|svg| {
+            crate::export::svg::outline_options(svg, image.width(), image.height(), MARGIN as u32)
+        })
         .unwrap_or_default();
     let decompositions: Vec<&Decomposition> = layers.iter().map(|l| &l.decomposition).collect();
     let part = super::partition::partition(image, &decompositions, MARGIN, &outline)?;
