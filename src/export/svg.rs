@@ -571,7 +571,7 @@ mod tests {
     }
 
     #[test]
-    fn single_pixel_is_its_square() {
+    fn single_pixel_is_a_diamond() {
         let mask = Mask::from_ascii("...\n.#.\n...");
         let d = decompose(
             trace(&mask, Convention::Default),
@@ -579,8 +579,12 @@ mod tests {
             OutlierRule::NotInPiece,
         );
         let out = svg_document(&d, 3, 3, &SvgOptions::default());
-        // Relative, compact, the closing line left to `Z`.
-        assert!(out.svg.contains("d=\"M2 1h-1v1h1Z\""), "{}", out.svg);
+        // Its square with the corners cut; relative, compact, the closing line left to `Z`.
+        assert!(
+            out.svg.contains("d=\"M2 1.5l-.5-.5-.5 .5 .5 .5Z\""),
+            "{}",
+            out.svg
+        );
         assert_eq!(fidelity(&out.svg, &mask).unwrap().differing, 0);
     }
 

@@ -19,8 +19,10 @@
 //! *refined* ([`stretch`]): a curve becomes its exact polygon of digital straight segments
 //! (one `L` each), a straight segment that still fails is halved, down to one or two pixels
 //! drawn along their cracks. Rounds repeat until the renderer draws every point right. So
-//! pixel staircases remain only where the input has one-pixel features, and curves remain
-//! wherever the renderer draws them right.
+//! cracks remain only where the input has one-pixel features, and curves remain wherever
+//! the renderer draws them right. Last, the corners inside the pixel staircases those
+//! cracks leave are cut ([`corners`]): half-pixel chamfers that keep every pixel centre on
+//! its side, so a lone pixel becomes a diamond and a one-pixel spur a spike.
 //!
 //! # Orientation
 //! Outer borders run counter-clockwise on screen, hole borders clockwise (the foreground
@@ -30,6 +32,7 @@ mod band_cells;
 mod band_path;
 mod band_polygon;
 mod builder;
+mod corners;
 mod cracks;
 mod cut;
 mod joins;
@@ -57,6 +60,7 @@ use crate::contour::Contour;
 use crate::decompose::Piece;
 use crate::model::Basis;
 use builder::Builder;
+use corners::cut_staircase_corners;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
 use nearest::{nearest_points, points_near};
@@ -147,6 +151,24 @@ fn cracks_path(points: &[crate::pixel::Pixel]) -> ContourPath {
 /// assert_eq!((path.start.x * grid).fract(), 0.0);
 /// ```
 pub fn contour_path(
+    contour: &Contour,
+    pieces: &[Piece],
+    basis: &dyn Basis,
+    opts: &OutlineOptions,
+) -> ContourPath {
+    let mut path = exact_path(contour, pieces, basis, opts);
+    // Where one-pixel features leave a staircase, its corners are cut (no pixel changes).
+    if let Some((start, commands)) =
+        cut_staircase_corners(path.start, &path.commands, opts.grid.min(MAX_GRID))
+    {
+        path.start = start;
+        path.commands = commands;
+    }
+    path
+}
+
+/// [`contour_path`] before the corners of its staircases are cut.
+fn exact_path(
     contour: &Contour,
     pieces: &[Piece],
     basis: &dyn Basis,

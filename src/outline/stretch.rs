@@ -8,7 +8,8 @@
 //! drawn as one `L` along its largest-margin line), and a straight segment that still fails
 //! is halved. Halving ends at pieces of one or two points, which have no equation and are
 //! drawn along their cracks, exact by construction; so refinement always terminates, and
-//! stairs of cracks only remain where the input has one-pixel features.
+//! stairs of cracks only remain where the input has one-pixel features (their corners are
+//! then cut, see [`super::corners`]).
 
 use super::separation::Separation;
 use super::vertices::side_pixels;

@@ -1,5 +1,4 @@
-//! Tests of [`contour_path`]: exact in tiny-skia, on the grid, no staircases where the input
-//! has none.
+//! Tests of [`contour_path`]: exact in tiny-skia, on the grid, no staircases.
 
 use super::*;
 use crate::bitmap::Mask;
@@ -86,11 +85,16 @@ fn first_path(mask: &Mask, model: Model) -> ContourPath {
 }
 
 #[test]
-fn single_pixel_is_its_square() {
-    let cp = first_path(&Mask::from_ascii("...\n.#.\n..."), Model::Line);
-    assert_eq!(cp.start, kurbo::Point::new(2.0, 1.0));
-    assert_eq!(cp.commands.len(), 4);
-    assert!(exact_by_construction(&cp));
+fn single_pixel_is_a_diamond() {
+    let mask = Mask::from_ascii("...\n.#.\n...");
+    let cp = first_path(&mask, Model::Line);
+    // Its square (along its cracks), with the corners cut: the diamond through the middles
+    // of its sides, which keeps the same pixel centres inside.
+    let mut corners: Vec<(f64, f64)> = cp.commands.iter().map(|c| (c.end().x, c.end().y)).collect();
+    corners.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(corners, [(1.0, 1.5), (1.5, 1.0), (1.5, 2.0), (2.0, 1.5)]);
+    assert_eq!(check(&mask, Model::Line, 4), (0, 0));
+    assert!(!has_staircase(cp.start, &cp.commands));
 }
 
 #[test]
@@ -129,7 +133,7 @@ fn bad_pieces_fall_back_to_cracks() {
     for p in d.pieces[0].iter_mut() {
         p.last += 7;
     }
-    let cp = contour_path(
+    let cp = exact_path(
         &d.contours[0],
         &d.pieces[0],
         &basis,
@@ -137,6 +141,22 @@ fn bad_pieces_fall_back_to_cracks() {
     );
     assert_eq!(cp.fallbacks.invalid_pieces, 1);
     assert!(exact_by_construction(&cp));
+    // Drawn: the square with its corners cut, no staircase.
+    let drawn = contour_path(
+        &d.contours[0],
+        &d.pieces[0],
+        &basis,
+        &OutlineOptions::default(),
+    );
+    let mut pen = drawn.start;
+    let mut diagonals = 0;
+    for c in &drawn.commands {
+        let d = c.end() - pen;
+        diagonals += usize::from(d.x != 0.0 && d.y != 0.0);
+        pen = c.end();
+    }
+    assert_eq!(diagonals, 4, "{:?}", drawn.commands);
+    assert!(!has_staircase(drawn.start, &drawn.commands));
     let empty = Contour {
         points: Vec::new(),
         hole: false,
@@ -174,6 +194,19 @@ proptest! {
     fn exact_in_tiny_skia(mask in small_mask(), grid in 0u8..=6) {
         for model in [Model::Line, Model::Circle, Model::Conic] {
             prop_assert_eq!(check(&mask, model, grid), (0, 0), "{}", model);
+        }
+    }
+
+    /// No contour's path has a pixel staircase, on grids fine enough for the half-pixel
+    /// cuts of its corners, whatever the one-pixel features of the input.
+    #[test]
+    fn no_staircases(mask in small_mask(), grid in 1u8..=6) {
+        let d = decompose(trace(&mask, Convention::Default), Model::Conic, OutlierRule::NotInPiece);
+        let basis = d.model.basis();
+        let opts = OutlineOptions { grid, ..OutlineOptions::default() };
+        for (c, pieces) in d.contours.iter().zip(&d.pieces) {
+            let cp = contour_path(c, pieces, &basis, &opts);
+            prop_assert!(!has_staircase(cp.start, &cp.commands), "{:?}", cp.commands);
         }
     }
 }
