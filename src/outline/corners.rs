@@ -18,24 +18,12 @@
 //! disappears, so a staircase of unit steps becomes the straight line through the steps'
 //! middles (collinear points are merged): one diagonal `L` instead of many.
 
-use super::staircase::{MAX_STEP, MIN_RUN};
+use super::staircase::{step, Step, MIN_RUN};
 use crate::curve::PathCommand;
 use kurbo::{Point, Vec2};
 
 /// Largest cut (pixels) along each leg of a corner.
 pub const MAX_CUT: f64 = 0.5;
-
-/// A short axis-aligned step: its axis (0 horizontal, 1 vertical).
-fn step_axis(from: Point, to: Point) -> Option<u8> {
-    let (dx, dy) = ((to.x - from.x).abs(), (to.y - from.y).abs());
-    if dy == 0.0 && dx > 0.0 && dx <= MAX_STEP {
-        Some(0)
-    } else if dx == 0.0 && dy > 0.0 && dy <= MAX_STEP {
-        Some(1)
-    } else {
-        None
-    }
-}
 
 /// True when the closed triangle `a b c` holds a pixel centre (`(i + ½, j + ½)`), within
 /// a margin of 1e-9 px.
@@ -92,10 +80,10 @@ pub(crate) fn cut_staircase_corners(
         edges.push((pen, PathCommand::Line(start)));
     }
     let m = edges.len();
-    let axis: Vec<Option<u8>> = edges
+    let axis: Vec<Option<Step>> = edges
         .iter()
         .map(|(from, c)| match c {
-            PathCommand::Line(to) => step_axis(*from, *to),
+            PathCommand::Line(to) => step(*from, *to),
             _ => None,
         })
         .collect();
@@ -168,10 +156,11 @@ pub(crate) fn cut_staircase_corners(
     // between their neighbours.
     let mut out: Vec<(PathCommand, bool)> = Vec::with_capacity(pts.len());
     for p in pts {
-        let is_line_to_same = matches!(p.0, PathCommand::Line(q) if out.last().is_some_and(|l: &(PathCommand, bool)| l.0.end() == q));
-        if is_line_to_same {
-            out.last_mut().expect("checked").1 |= p.1;
-            continue;
+        if let (PathCommand::Line(q), Some(last)) = (p.0, out.last_mut()) {
+            if last.0.end() == q {
+                last.1 |= p.1;
+                continue;
+            }
         }
         out.push(p);
     }

@@ -37,10 +37,25 @@ impl std::ops::AddAssign for StaircaseCount {
 }
 
 /// Direction of a short axis-aligned segment.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Step {
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Step {
+    /// At most [`MAX_STEP`] long, horizontal.
     Horizontal,
+    /// At most [`MAX_STEP`] long, vertical.
     Vertical,
+}
+
+/// The step a straight segment from `from` to `to` makes, or `None` when it is not a
+/// step (too long, not axis-aligned, or empty).
+pub(crate) fn step(from: Point, to: Point) -> Option<Step> {
+    let (dx, dy) = ((to.x - from.x).abs(), (to.y - from.y).abs());
+    if dy < 1e-9 && dx > 0.0 && dx <= MAX_STEP {
+        Some(Step::Horizontal)
+    } else if dx < 1e-9 && dy > 0.0 && dy <= MAX_STEP {
+        Some(Step::Vertical)
+    } else {
+        None
+    }
 }
 
 /// Counts runs while segments are fed one by one.
@@ -70,14 +85,7 @@ impl Counter {
     /// A straight segment from `from` to `to`.
     pub(crate) fn line(&mut self, from: (f64, f64), to: (f64, f64)) {
         self.count.lines += 1;
-        let (dx, dy) = ((to.0 - from.0).abs(), (to.1 - from.1).abs());
-        let step = if dy < 1e-9 && dx > 0.0 && dx <= MAX_STEP {
-            Some(Step::Horizontal)
-        } else if dx < 1e-9 && dy > 0.0 && dy <= MAX_STEP {
-            Some(Step::Vertical)
-        } else {
-            None
-        };
+        let step = step(Point::new(from.0, from.1), Point::new(to.0, to.1));
         if step.is_some() && step != self.last {
             self.run += 1;
         } else {
