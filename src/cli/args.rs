@@ -112,6 +112,12 @@ pub struct Args {
     #[arg(long, value_name = "PX", default_value_t = 1.0 / 32.0, value_parser = parse_clearance)]
     pub min_clearance: f64,
 
+    /// Keep the square corners of one-pixel features (lone pixels, one-pixel spurs and
+    /// notches), for pixel art. By default the corners inside a pixel staircase are cut by
+    /// half a pixel (a lone pixel becomes a diamond, a spur a spike), which changes no pixel
+    #[arg(long)]
+    pub square_corners: bool,
+
     /// Write the pieces and their exact equations as JSON ('-' for standard output).
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,

@@ -125,6 +125,7 @@ pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPoo
         grid: args.grid,
         tolerance: args.tolerance,
         min_clearance: args.min_clearance,
+        square_corners: args.square_corners,
     });
     if outputs.picture.is_some() {
         o.picture = Some(args.scale);

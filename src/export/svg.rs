@@ -52,6 +52,10 @@ pub struct SvgOptions {
     /// practically never pass the render check); 0 tries every curve. Negative or NaN
     /// values mean the default.
     pub min_clearance: f64,
+    /// Keep the square corners of one-pixel features (lone pixels, one-pixel spurs and
+    /// notches), for pixel art. Default `false`: the corners inside a pixel staircase are
+    /// cut by half a pixel (a lone pixel becomes a diamond), which changes no pixel.
+    pub square_corners: bool,
 }
 
 impl Default for SvgOptions {
@@ -61,6 +65,7 @@ impl Default for SvgOptions {
             grid: OutlineOptions::default().grid,
             tolerance: 0.05,
             min_clearance: crate::outline::DEFAULT_MIN_CLEARANCE,
+            square_corners: false,
         }
     }
 }
@@ -354,6 +359,7 @@ pub(crate) fn outline_options(
             m + f64::from(width),
             m + f64::from(height),
         )),
+        square_corners: opts.square_corners,
     }
 }
 

@@ -97,6 +97,9 @@ pub struct OutlineOptions {
     /// tiny-skia draws it there: its edge clipper cuts a curve where it crosses the border,
     /// which moves the chords of what remains; pixels outside are not checked.
     pub canvas: Option<kurbo::Rect>,
+    /// Keep the square corners of one-pixel features (pixel art): the corners inside pixel
+    /// staircases are not cut (see [`contour_path`]). Default `false`.
+    pub square_corners: bool,
 }
 
 impl Default for OutlineOptions {
@@ -107,6 +110,7 @@ impl Default for OutlineOptions {
             grid: 4,
             clipping: EdgeClipping::Unknown,
             canvas: None,
+            square_corners: false,
         }
     }
 }
@@ -157,6 +161,9 @@ pub fn contour_path(
     opts: &OutlineOptions,
 ) -> ContourPath {
     let mut path = exact_path(contour, pieces, basis, opts);
+    if opts.square_corners {
+        return path;
+    }
     // Where one-pixel features leave a staircase, its corners are cut (no pixel changes).
     if let Some((start, commands)) =
         cut_staircase_corners(path.start, &path.commands, opts.grid.min(MAX_GRID))

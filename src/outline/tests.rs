@@ -98,6 +98,24 @@ fn single_pixel_is_a_diamond() {
 }
 
 #[test]
+fn square_corners_keep_the_pixel_square() {
+    let mask = Mask::from_ascii("...\n.#.\n...");
+    let d = decompose(
+        trace(&mask, Convention::Default),
+        Model::Line,
+        OutlierRule::NotInPiece,
+    );
+    let opts = OutlineOptions {
+        square_corners: true,
+        ..OutlineOptions::default()
+    };
+    let cp = contour_path(&d.contours[0], &d.pieces[0], &d.model.basis(), &opts);
+    assert_eq!(cp.start, kurbo::Point::new(2.0, 1.0));
+    assert_eq!(cp.commands.len(), 4);
+    assert!(exact_by_construction(&cp));
+}
+
+#[test]
 fn disc_is_exact() {
     let mut rows = String::new();
     for y in 0..40 {
