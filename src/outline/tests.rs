@@ -71,17 +71,17 @@ fn check(mask: &Mask, model: Model, grid: u8) -> (usize, usize) {
 
 /// The path of the first contour of `mask` decomposed with `model`, default options.
 fn first_path(mask: &Mask, model: Model) -> ContourPath {
+    first_path_with(mask, model, &OutlineOptions::default())
+}
+
+/// The path of the first contour of `mask` decomposed with `model`, drawn with `opts`.
+fn first_path_with(mask: &Mask, model: Model, opts: &OutlineOptions) -> ContourPath {
     let d = decompose(
         trace(mask, Convention::Default),
         model,
         OutlierRule::NotInPiece,
     );
-    contour_path(
-        &d.contours[0],
-        &d.pieces[0],
-        &d.model.basis(),
-        &OutlineOptions::default(),
-    )
+    contour_path(&d.contours[0], &d.pieces[0], &d.model.basis(), opts)
 }
 
 #[test]
@@ -99,17 +99,11 @@ fn single_pixel_is_a_diamond() {
 
 #[test]
 fn square_corners_keep_the_pixel_square() {
-    let mask = Mask::from_ascii("...\n.#.\n...");
-    let d = decompose(
-        trace(&mask, Convention::Default),
-        Model::Line,
-        OutlierRule::NotInPiece,
-    );
     let opts = OutlineOptions {
         square_corners: true,
         ..OutlineOptions::default()
     };
-    let cp = contour_path(&d.contours[0], &d.pieces[0], &d.model.basis(), &opts);
+    let cp = first_path_with(&Mask::from_ascii("...\n.#.\n..."), Model::Line, &opts);
     assert_eq!(cp.start, kurbo::Point::new(2.0, 1.0));
     assert_eq!(cp.commands.len(), 4);
     assert!(exact_by_construction(&cp));
