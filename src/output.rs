@@ -12,11 +12,13 @@
 //!   link stays a link.
 //! * An existing regular file is replaced atomically (a new file renamed over it) and keeps
 //!   its permissions (hard links to it keep the old content).
-//! * Paths into `/dev` and `/proc` (also as a link's target) and any existing destination that
-//!   is not a regular file — `/dev/null`, `/dev/stdout`, a FIFO — are written in place,
-//!   appending: renaming over them would replace the device (as root, `-o /dev/null` once
-//!   turned `/dev/null` into a regular file), or the file a shell redirected standard output
-//!   to. A FIFO that nobody reads is an error, not a wait.
+//! * Any existing destination that is not a regular file — `/dev/null`, `/dev/stdout`, a
+//!   FIFO — and any link under `/dev` and `/proc` (links there name streams, such as
+//!   `/dev/stderr`) are written in place, appending: renaming over them would replace the
+//!   device (as root, `-o /dev/null` once turned `/dev/null` into a regular file), or the file
+//!   a shell redirected standard output to. A FIFO that nobody reads is an error, not a wait.
+//!   New and regular files under `/dev` (on the tmpfs `/dev/shm`) are written as anywhere
+//!   else.
 //!
 //! Temporary files are created with `O_EXCL` under a random name (`tempfile`), so a link
 //! planted at a predictable name cannot redirect the write; their names are short whatever
@@ -246,7 +248,13 @@ impl OutputSet {
             // A path that cannot be resolved (a stream under /proc) is compared as written.
             let canonical = canonical(&target).unwrap_or_else(|_| target.clone());
             let key = Key::File { canonical, id };
-            if special || meta.as_ref().is_some_and(|m| !m.is_file()) {
+            // Under /dev and /proc, only what exists and is not a plain file is a device or
+            // stream: a new or regular file there (on /dev/shm, a tmpfs) is written as
+            // anywhere else, not appended to.
+            let stream = special
+                && std::fs::symlink_metadata(&target)
+                    .is_ok_and(|m| m.file_type().is_symlink() || !m.is_file());
+            if stream || meta.as_ref().is_some_and(|m| !m.is_file()) {
                 let file = open_in_place(&target).map_err(err)?;
                 (key, Sink::InPlace { file, bytes: None })
             } else {

@@ -66,6 +66,25 @@ fn devices_are_written_in_place_not_replaced() {
     assert_eq!(names(dir.path()), ["null"], "no temporary file left");
 }
 
+/// `/dev/shm` is a tmpfs where files are made like anywhere else: a new file is created (it
+/// once failed with "No such file or directory") and an existing one replaced, not appended to.
+#[cfg(target_os = "linux")]
+#[test]
+fn regular_files_under_dev_are_written_whole() {
+    let Ok(dir) = tempfile::Builder::new()
+        .prefix("layertrace-test")
+        .tempdir_in("/dev/shm")
+    else {
+        return; // no writable /dev/shm here
+    };
+    let target = dir.path().join("out.svg");
+    write_atomic(&target, b"first").unwrap();
+    assert_eq!(std::fs::read(&target).unwrap(), b"first");
+    write_atomic(&target, b"second").unwrap();
+    assert_eq!(std::fs::read(&target).unwrap(), b"second");
+    assert_eq!(names(dir.path()), ["out.svg"], "no temporary file left");
+}
+
 #[cfg(unix)]
 #[test]
 fn symlinks_are_followed_and_kept() {
