@@ -21,6 +21,17 @@ impl LiftedSet {
         }
     }
 
+    /// An empty set with room for `count` points (no reallocation while they are pushed).
+    pub fn with_capacity(point_dim: usize, dim: usize, count: usize) -> LiftedSet {
+        LiftedSet {
+            point_dim,
+            dim,
+            points: Vec::with_capacity(count * point_dim),
+            lifted: Vec::with_capacity(count * dim),
+            float: Vec::with_capacity(count * dim),
+        }
+    }
+
     /// Number of points.
     #[inline]
     pub fn len(&self) -> usize {

@@ -21,7 +21,7 @@ fn lift_points<P: AsRef<[i64]>>(
     max_abs: &mut [i64],
 ) -> Option<LiftedSet> {
     let (pd, n) = (basis.point_dim(), basis.dim());
-    let mut set = LiftedSet::new(pd, n);
+    let mut set = LiftedSet::with_capacity(pd, n, points.len());
     let mut f = vec![0; n];
     let mut rel = vec![0; pd];
     for p in points {
