@@ -43,9 +43,12 @@ impl Sides {
 /// background beside every one of them, the two ends included (`high`), each once.
 pub(crate) fn side_pixels(points: &[Pixel], first: usize, last: usize) -> (Vec<Pixel>, Vec<Pixel>) {
     let n = points.len();
-    let inliers: PixelSet = points[first..=last].iter().copied().collect();
-    let (mut low, mut high) = (Vec::new(), Vec::new());
-    let (mut seen_up, mut seen_low) = (PixelSet::default(), PixelSet::default());
+    let len = last + 1 - first;
+    let with = |c: usize| PixelSet::with_capacity_and_hasher(c, Default::default());
+    let mut inliers = with(len);
+    inliers.extend(points[first..=last].iter().copied());
+    let (mut low, mut high) = (Vec::with_capacity(2 * len), Vec::with_capacity(len + 4));
+    let (mut seen_up, mut seen_low) = (with(len + 4), with(len));
     for k in first..=last {
         low.push(points[k]);
         let (prev, next) = (points[(k + n - 1) % n], points[(k + 1) % n]);

@@ -6,6 +6,7 @@ use super::exact::{reduce_by_gcd, verify_certificate};
 use super::float::{power_of_two_scale, FLOAT_PARAMS};
 use super::gjk::{gjk, GjkOutcome, GjkParams};
 use super::lifted::LiftedSet;
+use super::planar::line_margin_direction;
 use super::relative::relative_into;
 use super::simplex::Simplex;
 use super::support::{FloatSupport, Sets, SupportMap};
@@ -122,6 +123,9 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
     {
         return None;
     }
+    if !scaled && is_line_basis(basis) {
+        return planar_margin(origin, low, high);
+    }
     let mut max_abs = vec![0i64; n];
     let low_set = lift_points(basis, origin, low, &mut max_abs)?;
     let high_set = lift_points(basis, origin, high, &mut max_abs)?;
@@ -148,6 +152,41 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
         .fold(f64::INFINITY, f64::min);
     (top < bottom).then(|| MarginDirection {
         direction: y,
+        level: (top + bottom) / 2.0,
+    })
+}
+
+/// True for the basis `(x, y)` of lines in the plane.
+fn is_line_basis(basis: &dyn Basis) -> bool {
+    basis.point_dim() == 2
+        && basis.dim() == 2
+        && basis
+            .polynomials()
+            .is_some_and(|f| f == [vec![(1, vec![1, 0])], vec![(1, vec![0, 1])]])
+}
+
+/// [`max_margin_direction`] for the line basis, from the convex hulls
+/// ([`line_margin_direction`]).
+fn planar_margin<P: AsRef<[i64]>>(
+    origin: &[i64],
+    low: &[P],
+    high: &[P],
+) -> Option<MarginDirection> {
+    let rel = |set: &[P]| -> Option<Vec<[i64; 2]>> {
+        set.iter()
+            .map(|p| {
+                let p = p.as_ref();
+                Some([p[0].checked_sub(origin[0])?, p[1].checked_sub(origin[1])?])
+            })
+            .collect()
+    };
+    let (low, high) = (rel(low)?, rel(high)?);
+    let d = line_margin_direction(&low, &high)?;
+    let value = |p: &[i64; 2]| d[0] * p[0] as f64 + d[1] * p[1] as f64;
+    let top = low.iter().map(value).fold(f64::NEG_INFINITY, f64::max);
+    let bottom = high.iter().map(value).fold(f64::INFINITY, f64::min);
+    (top < bottom).then(|| MarginDirection {
+        direction: d.to_vec(),
         level: (top + bottom) / 2.0,
     })
 }

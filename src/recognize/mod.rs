@@ -58,6 +58,7 @@ mod float;
 mod gjk;
 mod lifted;
 mod margin;
+mod planar;
 mod proof;
 pub(crate) mod relative;
 mod scalar;
