@@ -202,19 +202,33 @@ fn exact_path(
     let mut fallbacks = FallbackCounts::default();
     let mut st = Stretcher::new(points, tolerance);
     let mut stretches: Vec<Stretch> = Vec::with_capacity(pieces.len());
+    // Consecutive pieces whose curves are unused share one polygon: its segments run across
+    // the pieces' ends instead of stopping at each.
+    let mut unused_run: Option<(usize, usize)> = None;
     for p in pieces {
         let (s, unused) = st.piece(basis, p, opts.min_clearance);
         match unused {
-            None => stretches.push(s),
+            None => {
+                if let Some((a, b)) = unused_run.take() {
+                    stretches.extend(st.polygon(a, b));
+                }
+                stretches.push(s);
+            }
             Some(reason) => {
                 match reason {
                     Unused::Thin => fallbacks.thin += 1,
                     Unused::NoPolynomial => fallbacks.no_polynomial += 1,
                     Unused::ZeroCertificate => {}
                 }
-                stretches.extend(st.polygon(p.first, p.last));
+                unused_run = Some(match unused_run {
+                    Some((a, _)) => (a, p.last),
+                    None => (p.first, p.last),
+                });
             }
         }
+    }
+    if let Some((a, b)) = unused_run {
+        stretches.extend(st.polygon(a, b));
     }
     let mut cracked = vec![false; stretches.len()];
     let mut keep_bridge = vec![false; stretches.len()];
@@ -357,21 +371,57 @@ fn exact_path(
             let mut next = Vec::with_capacity(m + 8);
             let mut next_cracked = Vec::with_capacity(m + 8);
             let mut next_keep = Vec::with_capacity(m + 8);
-            for (k, s) in stretches.iter().enumerate() {
-                match refine[k].then(|| st.refine(s)).flatten() {
+            let mut k = 0;
+            while k < m {
+                let s = &stretches[k];
+                // Consecutive curves refined together become one polygon (see above), with
+                // the straight segments after them.
+                let curve_run = |j: usize| refine[j] && stretches[j].drawing == Drawing::Curve;
+                let straight = |j: usize| {
+                    !refine[j] && !cracked[j] && stretches[j].drawing == Drawing::Straight
+                };
+                // At most one straight segment before the first curve (the start of the run)
+                // and one after the last: the segments farther away would come out the same.
+                let lead = usize::from(straight(k) && k + 1 < m && curve_run(k + 1));
+                let mut end = k + lead;
+                let mut curves = 0;
+                if curve_run(end) {
+                    curves = 1;
+                    while end + 1 < m && curve_run(end + 1) {
+                        end += 1;
+                        curves += 1;
+                    }
+                    if end + 1 < m && straight(end + 1) {
+                        end += 1;
+                    }
+                }
+                if curves >= 1 && end > k {
+                    let parts = st.polygon(s.first, stretches[end].last);
+                    let last = parts.len() - 1;
+                    for (i, p) in parts.into_iter().enumerate() {
+                        next.push(p);
+                        next_cracked.push(i == last && cracked[end]);
+                        next_keep.push(i == last && keep_bridge[end]);
+                    }
+                    k = end + 1;
+                    continue;
+                }
+                let j = k;
+                k += 1;
+                match refine[j].then(|| st.refine(s)).flatten() {
                     Some(parts) => {
                         fallbacks.split += usize::from(s.drawing == Drawing::Straight);
                         let last = parts.len() - 1;
                         for (i, p) in parts.into_iter().enumerate() {
                             next.push(p);
-                            next_cracked.push(i == last && cracked[k]);
-                            next_keep.push(i == last && keep_bridge[k]);
+                            next_cracked.push(i == last && cracked[j]);
+                            next_keep.push(i == last && keep_bridge[j]);
                         }
                     }
                     None => {
                         next.push(s.clone());
-                        next_cracked.push(cracked[k]);
-                        next_keep.push(keep_bridge[k]);
+                        next_cracked.push(cracked[j]);
+                        next_keep.push(keep_bridge[j]);
                     }
                 }
             }
