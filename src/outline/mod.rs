@@ -374,8 +374,7 @@ fn exact_path(
             let mut k = 0;
             while k < m {
                 let s = &stretches[k];
-                // Consecutive curves refined together become one polygon (see above), with
-                // the straight segments after them.
+                // Consecutive curves refined together become one polygon (see above).
                 let curve_run = |j: usize| refine[j] && stretches[j].drawing == Drawing::Curve;
                 let straight = |j: usize| {
                     !refine[j] && !cracked[j] && stretches[j].drawing == Drawing::Straight
@@ -384,46 +383,41 @@ fn exact_path(
                 // and one after the last: the segments farther away would come out the same.
                 let lead = usize::from(straight(k) && k + 1 < m && curve_run(k + 1));
                 let mut end = k + lead;
-                let mut curves = 0;
-                if curve_run(end) {
-                    curves = 1;
+                let has_curve = curve_run(end);
+                if has_curve {
                     while end + 1 < m && curve_run(end + 1) {
                         end += 1;
-                        curves += 1;
                     }
                     if end + 1 < m && straight(end + 1) {
                         end += 1;
                     }
                 }
-                if curves >= 1 && end > k {
-                    let parts = st.polygon(s.first, stretches[end].last);
-                    let last = parts.len() - 1;
-                    for (i, p) in parts.into_iter().enumerate() {
-                        next.push(p);
-                        next_cracked.push(i == last && cracked[end]);
-                        next_keep.push(i == last && keep_bridge[end]);
-                    }
-                    k = end + 1;
-                    continue;
-                }
-                let j = k;
-                k += 1;
-                match refine[j].then(|| st.refine(s)).flatten() {
-                    Some(parts) => {
+                // What replaces stretches `k..=end` (the last part keeps `end`'s flags).
+                let parts = if has_curve && end > k {
+                    Some(st.polygon(s.first, stretches[end].last))
+                } else {
+                    let parts = refine[k].then(|| st.refine(s)).flatten();
+                    if parts.is_some() {
                         fallbacks.split += usize::from(s.drawing == Drawing::Straight);
+                    }
+                    parts
+                };
+                match parts {
+                    Some(parts) => {
                         let last = parts.len() - 1;
                         for (i, p) in parts.into_iter().enumerate() {
                             next.push(p);
-                            next_cracked.push(i == last && cracked[j]);
-                            next_keep.push(i == last && keep_bridge[j]);
+                            next_cracked.push(i == last && cracked[end]);
+                            next_keep.push(i == last && keep_bridge[end]);
                         }
                     }
                     None => {
                         next.push(s.clone());
-                        next_cracked.push(cracked[j]);
-                        next_keep.push(keep_bridge[j]);
+                        next_cracked.push(cracked[k]);
+                        next_keep.push(keep_bridge[k]);
                     }
                 }
+                k = end + 1;
             }
             stretches = next;
             cracked = next_cracked;

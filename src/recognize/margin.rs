@@ -180,15 +180,7 @@ fn planar_margin<P: AsRef<[i64]>>(
             })
             .collect()
     };
-    let (low, high) = (rel(low)?, rel(high)?);
-    let d = line_margin_direction(&low, &high)?;
-    let value = |p: &[i64; 2]| d[0] * p[0] as f64 + d[1] * p[1] as f64;
-    let top = low.iter().map(value).fold(f64::NEG_INFINITY, f64::max);
-    let bottom = high.iter().map(value).fold(f64::INFINITY, f64::min);
-    (top < bottom).then(|| MarginDirection {
-        direction: d.to_vec(),
-        level: (top + bottom) / 2.0,
-    })
+    line_margin_direction(&rel(low)?, &rel(high)?)
 }
 
 /// A certificate for the same sets with small coefficients, for people who read the

@@ -9,6 +9,8 @@
 //! vertices. The float GJK reaches the same vector iteratively; this is direct, and the
 //! hulls are exact (integer arithmetic).
 
+use super::MarginDirection;
+
 /// An integer point.
 type P = [i64; 2];
 
@@ -83,9 +85,10 @@ fn shortest(from: &[P], to: &[P], best: &mut Option<(f64, [f64; 2])>) {
 }
 
 /// The direction of largest margin from `low` to `high` (points relative to any common
-/// origin): the shortest vector between their convex hulls, `d·l < d·h` for every pair when
-/// the sets are strictly separable. Returns `None` if either set is empty or the hulls meet.
-pub(crate) fn line_margin_direction(low: &[P], high: &[P]) -> Option<[f64; 2]> {
+/// origin), the shortest vector `d` between their convex hulls, with the level half-way
+/// between the sets: `d·l < level < d·h` for every pair. Returns `None` if either set is
+/// empty or the hulls meet.
+pub(crate) fn line_margin_direction(low: &[P], high: &[P]) -> Option<MarginDirection> {
     let (lh, hh) = (hull(low), hull(high));
     if lh.is_empty() || hh.is_empty() {
         return None;
@@ -101,11 +104,15 @@ pub(crate) fn line_margin_direction(low: &[P], high: &[P]) -> Option<[f64; 2]> {
         (None, None) => return None,
     };
     // Crossing hulls have vertex-to-edge vectors too: the shortest one separates only when
-    // the hulls are disjoint.
+    // the hulls are disjoint. (A linear function's extremes over a set are at its hull's
+    // vertices.)
     let value = |p: &P| d[0] * p[0] as f64 + d[1] * p[1] as f64;
     let top = lh.iter().map(value).fold(f64::NEG_INFINITY, f64::max);
     let bottom = hh.iter().map(value).fold(f64::INFINITY, f64::min);
-    (d2 > 0.0 && top < bottom).then_some(d)
+    (d2 > 0.0 && top < bottom).then(|| MarginDirection {
+        direction: d.to_vec(),
+        level: (top + bottom) / 2.0,
+    })
 }
 
 #[cfg(test)]
@@ -123,8 +130,10 @@ mod tests {
     fn two_squares_side_by_side() {
         let low = [[0, 0], [1, 0], [0, 1], [1, 1]];
         let high = [[4, 0], [5, 0], [4, 1], [5, 1]];
-        assert_eq!(line_margin_direction(&low, &high), Some([3.0, 0.0]));
-        assert_eq!(line_margin_direction(&high, &low), Some([-3.0, 0.0]));
+        let m = line_margin_direction(&low, &high).unwrap();
+        assert_eq!((m.direction, m.level), (vec![3.0, 0.0], 7.5));
+        let m = line_margin_direction(&high, &low).unwrap();
+        assert_eq!((m.direction, m.level), (vec![-3.0, 0.0], -7.5));
         // Overlapping hulls: no separation.
         assert_eq!(line_margin_direction(&low, &[[1, 1], [3, 3]]), None);
     }
@@ -167,7 +176,11 @@ mod tests {
             let separable = dirs.iter().any(|&d| separates(d));
             match line_margin_direction(&low, &high) {
                 None => prop_assert!(!separable),
-                Some(d) => {
+                Some(m) => {
+                    let d = [m.direction[0], m.direction[1]];
+                    let top = low.iter().map(|&p| dot(d, p)).fold(f64::NEG_INFINITY, f64::max);
+                    let bottom = high.iter().map(|&p| dot(d, p)).fold(f64::INFINITY, f64::min);
+                    prop_assert!(top < m.level && m.level < bottom);
                     prop_assert!(separable);
                     prop_assert!(separates(d));
                     let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
