@@ -69,16 +69,16 @@ fn to_segment(p: P, a: P, b: P) -> [f64; 2] {
     [ax + t * ex - px, ay + t * ey - py]
 }
 
-/// The shortest vector from a point of the hull `from` to a point of the hull `to`, over the
-/// vertices of `from` and the edges of `to`.
-fn shortest(from: &[P], to: &[P], best: &mut Option<(f64, [f64; 2])>) {
+/// Keeps in `best` (squared length, vector) the shortest vector from a vertex of the hull
+/// `from` to an edge of the hull `to` when shorter, times `sign` (−1 to point the other way).
+fn shortest(from: &[P], to: &[P], sign: f64, best: &mut Option<(f64, [f64; 2])>) {
     let m = to.len();
     for &p in from {
         for k in 0..m {
             let v = to_segment(p, to[k], to[(k + 1) % m]);
             let d2 = v[0] * v[0] + v[1] * v[1];
             if best.is_none_or(|(b, _)| d2 < b) {
-                *best = Some((d2, v));
+                *best = Some((d2, [sign * v[0], sign * v[1]]));
             }
         }
     }
@@ -94,15 +94,9 @@ pub(crate) fn line_margin_direction(low: &[P], high: &[P]) -> Option<MarginDirec
         return None;
     }
     let mut best = None;
-    shortest(&lh, &hh, &mut best);
-    let mut back = None;
-    shortest(&hh, &lh, &mut back);
-    let (d2, d) = match (best, back) {
-        (Some((a, v)), Some((b, _))) if a <= b => (a, v),
-        (_, Some((b, w))) => (b, [-w[0], -w[1]]),
-        (Some(found), None) => found,
-        (None, None) => return None,
-    };
+    shortest(&lh, &hh, 1.0, &mut best);
+    shortest(&hh, &lh, -1.0, &mut best);
+    let (d2, d) = best?;
     // Crossing hulls have vertex-to-edge vectors too: the shortest one separates only when
     // the hulls are disjoint. (A linear function's extremes over a set are at its hull's
     // vertices.)
