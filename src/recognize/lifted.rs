@@ -105,6 +105,12 @@ impl LiftedSet {
         self.float.chunks_exact(self.dim.max(1))
     }
 
+    /// All liftings as `f64`, one slice (rows of [`LiftedSet::dim`] numbers).
+    #[inline]
+    pub fn float_values(&self) -> &[f64] {
+        &self.float
+    }
+
     /// All exact liftings, row after row.
     #[inline]
     pub fn lifted_rows(&self) -> std::slice::ChunksExact<'_, i64> {

@@ -89,12 +89,52 @@ pub(crate) trait SupportMap<T> {
 }
 
 /// Index and value of the smallest and of the largest `y·F(p)` over a set (`f64`).
+///
+/// The liftings of the built-in models (without the constant: line 2, circle 3, conic 5,
+/// cubic 9 numbers) run with the row length known at compile time: the same products summed in the same order, but
+/// unrolled (this loop is the support function, the recognizer's innermost work).
 #[inline]
 fn float_extremes(set: &LiftedSet, y: &[f64]) -> Option<((usize, f64), (usize, f64))> {
+    match if set.dim() == y.len() { y.len() } else { 0 } {
+        2 => fixed_extremes::<2>(set, y),
+        3 => fixed_extremes::<3>(set, y),
+        5 => fixed_extremes::<5>(set, y),
+        9 => fixed_extremes::<9>(set, y),
+        _ => extremes_by(set.float_rows(), |row: &[f64]| {
+            row.iter().zip(y).map(|(a, b)| a * b).sum()
+        }),
+    }
+}
+
+/// [`float_extremes`] for rows of `D` numbers.
+#[inline]
+fn fixed_extremes<const D: usize>(
+    set: &LiftedSet,
+    y: &[f64],
+) -> Option<((usize, f64), (usize, f64))> {
+    let y: &[f64; D] = y.try_into().ok()?;
+    let (rows, _) = set.float_values().as_chunks::<D>();
+    extremes_by(rows.iter(), |row: &[f64; D]| {
+        // Left to right, as `Iterator::sum` adds.
+        let mut v = -0.0;
+        for k in 0..D {
+            v += row[k] * y[k];
+        }
+        v
+    })
+}
+
+/// Index and value of the smallest and of the largest `value(row)` over `rows` (the first
+/// of equal ones); `None` without rows.
+#[inline(always)]
+fn extremes_by<R>(
+    rows: impl Iterator<Item = R>,
+    value: impl Fn(R) -> f64,
+) -> Option<((usize, f64), (usize, f64))> {
     let mut min = (usize::MAX, f64::INFINITY);
     let mut max = (usize::MAX, f64::NEG_INFINITY);
-    for (i, row) in set.float_rows().enumerate() {
-        let v: f64 = row.iter().zip(y).map(|(a, b)| a * b).sum();
+    for (i, row) in rows.enumerate() {
+        let v = value(row);
         if v < min.1 {
             min = (i, v);
         }
