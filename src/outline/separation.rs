@@ -4,8 +4,9 @@
 //! `n·p < n·q` for every `p ∈ low`, `q ∈ high`, i.e. `n·(q − p) > 0` for every pair: each
 //! pair allows an open half-circle of normals, and the normals allowed by all pairs form an
 //! open arc of the circle, kept as its two bounding directions. Adding a point intersects
-//! the arc with the half-circles of its new pairs; all arithmetic is on integer vectors
-//! (differences of points, turned by ±90°), so the answer is exact.
+//! the arc with the half-circles of its new pairs — only those with the vertices of the
+//! other set's convex hull, and none for a point inside its own set's hull; all arithmetic
+//! is on integer vectors (differences of points, turned by ±90°), so the answer is exact.
 
 /// An integer direction.
 type Dir = [i64; 2];
@@ -40,11 +41,123 @@ fn same(a: Dir, b: Dir) -> bool {
     cross(a, b) == 0 && dot(a, b) > 0
 }
 
+/// The convex hull of a growing point set: its vertices counter-clockwise, no three on a
+/// line (one or two vertices while the points are one point or on one line).
+#[derive(Clone, Debug, Default)]
+struct Hull {
+    vertices: Vec<Dir>,
+    /// Scratch for rebuilding.
+    sorted: Vec<Dir>,
+}
+
+fn sub(a: Dir, b: Dir) -> Dir {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+impl Hull {
+    /// Adds `p`; returns false (and changes nothing) when `p` lies in the closed hull
+    /// already, border included. Linear in the number of vertices (rebuilt from scratch
+    /// past 128, one bit per edge).
+    fn add(&mut self, p: Dir) -> bool {
+        let v = &mut self.vertices;
+        let k = v.len();
+        if k <= 2 || k > 128 {
+            let inside = match k {
+                0 => false,
+                1 => v[0] == p,
+                2 => {
+                    cross(sub(v[1], v[0]), sub(p, v[0])) == 0
+                        && dot(sub(p, v[0]), sub(p, v[1])) <= 0
+                }
+                _ => (0..k).all(|i| cross(sub(v[(i + 1) % k], v[i]), sub(p, v[i])) >= 0),
+            };
+            if !inside {
+                self.rebuild(p);
+            }
+            return !inside;
+        }
+        // Edge i (v[i] → v[i+1]) sees p when p is strictly on its right; `sees` also marks
+        // the edges p lies on the line of.
+        let mut sees = 0u128;
+        let mut outside = false;
+        for i in 0..k {
+            let s = cross(sub(v[(i + 1) % k], v[i]), sub(p, v[i]));
+            outside |= s < 0;
+            if s <= 0 {
+                sees |= 1 << i;
+            }
+        }
+        if !outside {
+            return false;
+        }
+        // The edges that see p (with those p lies on the line of, next to them) form one
+        // chain: the vertices inside it go, and p follows the chain's first vertex.
+        let next = &mut self.sorted;
+        next.clear();
+        for j in 0..k {
+            let before = (j + k - 1) % k;
+            if !(sees >> before & 1 == 1 && sees >> j & 1 == 1) {
+                next.push(v[j]);
+                if sees >> j & 1 == 1 {
+                    next.push(p);
+                }
+            }
+        }
+        std::mem::swap(v, next);
+        true
+    }
+
+    /// The hull of the vertices and `p`, by Andrew's monotone chain.
+    fn rebuild(&mut self, p: Dir) {
+        let sorted = &mut self.sorted;
+        sorted.clear();
+        sorted.extend_from_slice(&self.vertices);
+        sorted.push(p);
+        sorted.sort_unstable();
+        sorted.dedup();
+        let hull = &mut self.vertices;
+        hull.clear();
+        if sorted.len() <= 2 {
+            hull.extend_from_slice(sorted);
+            return;
+        }
+        // Lower chain left to right, then upper chain right to left; each chain's last
+        // point is the next one's first.
+        let m = sorted.len();
+        for pass in 0..2 {
+            let floor = hull.len();
+            for k in 0..m {
+                let q = if pass == 0 {
+                    sorted[k]
+                } else {
+                    sorted[m - 1 - k]
+                };
+                while hull.len() >= floor + 2 {
+                    let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
+                    if cross(sub(b, a), sub(q, a)) > 0 {
+                        break;
+                    }
+                    hull.pop();
+                }
+                hull.push(q);
+            }
+            hull.pop();
+        }
+    }
+}
+
 /// Two point sets, grown point by point, and whether a line still separates them strictly.
+///
+/// Only the vertices of the two convex hulls constrain the normals: a point of a set is a
+/// convex combination `Σ λᵢ vᵢ` of its hull's vertices, so `n·(q − p) > 0` for every
+/// vertex pair gives it for every pair. A point added inside its set's hull adds nothing,
+/// and a point added outside is paired with the other hull's vertices only; this keeps
+/// growing a segment linear in its length (pairing every point with every point of the
+/// other side was the polygon's largest cost).
 #[derive(Clone, Debug)]
 pub(crate) struct Separation {
-    low: Vec<Dir>,
-    high: Vec<Dir>,
+    low: Hull,
+    high: Hull,
     normals: Normals,
 }
 
@@ -52,8 +165,8 @@ impl Separation {
     /// Empty sets (separable).
     pub(crate) fn new() -> Separation {
         Separation {
-            low: Vec::new(),
-            high: Vec::new(),
+            low: Hull::default(),
+            high: Hull::default(),
             normals: Normals::All,
         }
     }
@@ -65,68 +178,68 @@ impl Separation {
 
     /// Adds a point to the low side; returns [`Separation::separable`].
     pub(crate) fn add_low(&mut self, p: Dir) -> bool {
-        for i in 0..self.high.len() {
-            let q = self.high[i];
-            self.constrain([q[0] - p[0], q[1] - p[1]]);
+        if self.separable() && self.low.add(p) {
+            for &q in &self.high.vertices {
+                self.normals = constrain(self.normals, sub(q, p));
+            }
         }
-        self.low.push(p);
         self.separable()
     }
 
     /// Adds a point to the high side; returns [`Separation::separable`].
     pub(crate) fn add_high(&mut self, q: Dir) -> bool {
-        for i in 0..self.low.len() {
-            let p = self.low[i];
-            self.constrain([q[0] - p[0], q[1] - p[1]]);
+        if self.separable() && self.high.add(q) {
+            for &p in &self.low.vertices {
+                self.normals = constrain(self.normals, sub(q, p));
+            }
         }
-        self.high.push(q);
         self.separable()
     }
+}
 
-    /// Keeps the normals `n` with `n·d > 0`.
-    fn constrain(&mut self, d: Dir) {
-        // Most pairs allow the whole arc already: an arc under a half-circle lies in the
-        // half-circle of `d` when both its ends do (its normals are positive combinations
-        // of `lo` and `hi`), and then nothing changes.
-        if let Normals::Arc { lo, hi } = self.normals {
-            if d != [0, 0] && dot(lo, d) >= 0 && dot(hi, d) >= 0 && cross(lo, hi) > 0 {
-                return;
+/// The normals `n` of `normals` with `n·d > 0`.
+fn constrain(normals: Normals, d: Dir) -> Normals {
+    // Most pairs allow the whole arc already: an arc under a half-circle lies in the
+    // half-circle of `d` when both its ends do (its normals are positive combinations
+    // of `lo` and `hi`), and then nothing changes.
+    if let Normals::Arc { lo, hi } = normals {
+        if d != [0, 0] && dot(lo, d) >= 0 && dot(hi, d) >= 0 && cross(lo, hi) > 0 {
+            return normals;
+        }
+    }
+    // The half-circle round d, from d turned by −90° to d turned by +90°.
+    let (r1, r2) = ([d[1], -d[0]], [-d[1], d[0]]);
+    match normals {
+        Normals::None => Normals::None,
+        _ if d == [0, 0] => Normals::None,
+        Normals::All => Normals::Arc { lo: r1, hi: r2 },
+        Normals::Arc { lo, hi } => {
+            let new_lo = if inside(r1, lo, hi) {
+                Some(r1)
+            } else if inside(lo, r1, r2) || same(lo, r1) {
+                Some(lo)
+            } else {
+                None
+            };
+            let new_hi = if inside(r2, lo, hi) {
+                Some(r2)
+            } else if inside(hi, r1, r2) || same(hi, r2) {
+                Some(hi)
+            } else {
+                None
+            };
+            match (new_lo, new_hi) {
+                (Some(lo), Some(hi)) => {
+                    let c = cross(lo, hi);
+                    if c > 0 || (c == 0 && dot(lo, hi) < 0) {
+                        Normals::Arc { lo, hi }
+                    } else {
+                        Normals::None
+                    }
+                }
+                _ => Normals::None,
             }
         }
-        // The half-circle round d, from d turned by −90° to d turned by +90°.
-        let (r1, r2) = ([d[1], -d[0]], [-d[1], d[0]]);
-        self.normals = match self.normals {
-            Normals::None => Normals::None,
-            _ if d == [0, 0] => Normals::None,
-            Normals::All => Normals::Arc { lo: r1, hi: r2 },
-            Normals::Arc { lo, hi } => {
-                let new_lo = if inside(r1, lo, hi) {
-                    Some(r1)
-                } else if inside(lo, r1, r2) || same(lo, r1) {
-                    Some(lo)
-                } else {
-                    None
-                };
-                let new_hi = if inside(r2, lo, hi) {
-                    Some(r2)
-                } else if inside(hi, r1, r2) || same(hi, r2) {
-                    Some(hi)
-                } else {
-                    None
-                };
-                match (new_lo, new_hi) {
-                    (Some(lo), Some(hi)) => {
-                        let c = cross(lo, hi);
-                        if c > 0 || (c == 0 && dot(lo, hi) < 0) {
-                            Normals::Arc { lo, hi }
-                        } else {
-                            Normals::None
-                        }
-                    }
-                    _ => Normals::None,
-                }
-            }
-        };
     }
 }
 
@@ -174,6 +287,60 @@ mod tests {
                 }
                 prop_assert_eq!(s.separable(), brute(&low, &high), "{:?} {:?}", low, high);
             }
+        }
+    }
+
+    /// Every pair constrains: the definition, quadratic.
+    fn all_pairs(low: &[Dir], high: &[Dir]) -> bool {
+        let mut n = Normals::All;
+        for p in low {
+            for q in high {
+                n = constrain(n, sub(*q, *p));
+            }
+        }
+        n != Normals::None
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+        /// Pairing the hulls' vertices only answers as pairing every point, on sets large
+        /// enough for points inside the hulls, on their borders and on lines.
+        #[test]
+        fn hull_vertices_answer_as_all_pairs(
+            points in prop::collection::vec(((-5i64..5, -3i64..3), any::<bool>()), 1..40)
+        ) {
+            let mut s = Separation::new();
+            let (mut low, mut high) = (Vec::new(), Vec::new());
+            for ((x, y), is_low) in points {
+                // A point in both sets is allowed: no line separates them then.
+                let p = [x + y, y];
+                if is_low {
+                    s.add_low(p);
+                    low.push(p);
+                } else {
+                    s.add_high(p);
+                    high.push(p);
+                }
+                prop_assert_eq!(s.separable(), all_pairs(&low, &high), "{:?} {:?}", low, high);
+            }
+        }
+
+        /// The hull holds exactly the points of the set's convex hull.
+        #[test]
+        fn hull_contains_its_points_only(
+            points in prop::collection::vec((-6i64..6, -6i64..6), 1..30),
+            probe in (-7i64..7, -7i64..7),
+        ) {
+            let mut h = Hull::default();
+            let pts: Vec<Dir> = points.iter().map(|&(x, y)| [x, y]).collect();
+            for (i, &p) in pts.iter().enumerate() {
+                // Added iff outside the hull of the points before it.
+                prop_assert_eq!(h.add(p), i == 0 || all_pairs(&pts[..i], &[p]));
+                prop_assert!(!h.add(p));
+            }
+            // A probe is in the hull iff no line separates it strictly from the points.
+            let q = [probe.0, probe.1];
+            prop_assert_eq!(!h.clone().add(q), !all_pairs(&pts, &[q]));
         }
     }
 

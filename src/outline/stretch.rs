@@ -21,9 +21,10 @@ use crate::pixel::{Pixel, PixelSet};
 use crate::recognize::max_margin_direction;
 use kurbo::Point;
 
-/// Most points of one straight segment of a polygon: growing one costs time quadratic in
-/// its length ([`Separation`] checks every pair of sides), so longer runs are cut, to meet
-/// again at a vertex shared on their (nearly) common line.
+/// Most points of one straight segment of a polygon: longer runs are cut, to meet again at
+/// a vertex shared on their (nearly) common line. (The bound dates from when growing a
+/// segment cost time quadratic in its length; [`Separation`] now pairs hull vertices only,
+/// but the side sets and the segment's largest-margin line still grow with it.)
 const MAX_SEGMENT_POINTS: usize = 160;
 
 /// How a stretch is drawn.
