@@ -15,9 +15,10 @@
 //! previous vertex to the next, as a Catmull–Rom spline has them, so consecutive cubics
 //! join smoothly), is drawn as that same polygon by the renderer and as a smooth curve by
 //! everything that draws curves exactly (a vector editor, a zoomed-in view): half the
-//! commands and no visible corners. Each such cubic is kept only if the path still paints
-//! exactly the reference pixels (its control points are snapped to the grid, and bent ones
-//! get more chords); the others go back to their two segments.
+//! commands and no visible corners. Each such cubic is kept only if it changes no pixel
+//! (its control points are snapped to the grid, and bent ones get more chords): the loop
+//! from the cubic back along its two segments, filled alone by tiny-skia in a window of its
+//! own, must paint nothing. The others go back to their two segments.
 
 use super::builder::Builder;
 use super::render_check::{finely_flattened, misplaced_pixels, EdgeClipping, Reference};
@@ -28,17 +29,12 @@ use kurbo::{Point, Vec2};
 /// corners of the shape, not polygon vertices of a curve.
 pub const MAX_TURN_DEGREES: f64 = 40.0;
 
-/// Rounds of merging, checking and reverting.
-const ROUNDS: usize = 6;
-
 /// A merge of commands `i` and `i + 1` (two lines) into one cubic.
 #[derive(Clone, Copy)]
 struct Merge {
     /// Index of the first line.
     i: usize,
     cubic: PathCommand,
-    /// Bounding box of the two lines and the cubic's control points, inflated by a pixel.
-    bounds: kurbo::Rect,
 }
 
 /// `v / |v|`; `None` for a zero vector.
@@ -111,14 +107,9 @@ pub(crate) fn smooth_polygon(
             .and_then(|(ta, tb)| cubic_through(a, m, b, ta, tb, &snap));
         match cubic {
             Some([p1, p2]) => {
-                let mut bounds = kurbo::Rect::from_points(a, b);
-                for q in [m, p1, p2] {
-                    bounds = bounds.union_pt(q);
-                }
                 merges.push(Merge {
                     i,
                     cubic: PathCommand::Cubic(p1, p2, b),
-                    bounds: bounds.inflate(1.0, 1.0),
                 });
                 i += 2;
             }
@@ -141,36 +132,27 @@ pub(crate) fn smooth_polygon(
         }
         out
     };
-    for _ in 0..ROUNDS {
-        if merges.is_empty() {
-            break;
-        }
-        let out = assemble(&merges);
-        let mut bad = misplaced_pixels(reference, start, &out, clipping, canvas);
-        if let Some(fine) = finely_flattened(start, &out) {
-            bad.extend(misplaced_pixels(
-                reference,
-                start,
-                &fine,
-                EdgeClipping::Never,
-                None,
-            ));
-        }
-        if bad.is_empty() {
-            return out;
-        }
-        let before = merges.len();
-        merges.retain(|m| {
-            !bad.iter().any(|q| {
-                m.bounds
-                    .contains(Point::new(f64::from(q.x) + 0.5, f64::from(q.y) + 0.5))
+    // Each merge on its own: the closed loop `A —cubic→ B → M → A` winds, round each pixel
+    // centre, the change the merge makes to the path's winding there (tiny-skia's scan
+    // converter sums each edge's crossings by itself, and a line drawn both ways cancels).
+    // The polygon is exact, so a merge whose loop paints no pixel in either of tiny-skia's
+    // edge modes, nor finely flattened, leaves every pixel as it was; and merges that each
+    // change nothing change nothing together. Small windows instead of whole-contour fills.
+    merges.retain(|m| {
+        let a = vertex(m.i);
+        let mid = vertex(m.i + 1);
+        let lp = [m.cubic, PathCommand::Line(mid), PathCommand::Line(a)];
+        // The empty reference at A: the window is the loop's.
+        let nothing = Reference::new(a, &[]);
+        misplaced_pixels(&nothing, a, &lp, clipping, canvas).is_empty()
+            && finely_flattened(a, &lp).is_none_or(|fine| {
+                misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
             })
-        });
-        if merges.len() == before {
-            // A bad pixel no merge is near: not ours to fix (cannot happen when the input
-            // path was exact); give every merge up.
-            break;
-        }
-    }
-    commands.to_vec()
+    });
+    let out = assemble(&merges);
+    debug_assert!(
+        misplaced_pixels(reference, start, &out, clipping, canvas).is_empty(),
+        "a smoothed path misplaces pixels"
+    );
+    out
 }
