@@ -19,15 +19,19 @@ thread_local! {
 const SPARE_COUNT: usize = 6;
 const SPARE_MAX_BYTES: usize = 1 << 22;
 
-/// `len` zero bytes, in a reused buffer when one is spare.
+/// `len` zero bytes, in a reused buffer when one is spare. Spare buffers are zero over their
+/// length (see [`take_painted`]), so only a longer tail is written.
 fn zeroed(len: usize) -> Vec<u8> {
     let mut v = SPARE.with(|s| s.borrow_mut().pop()).unwrap_or_default();
-    v.clear();
-    v.resize(len, 0);
+    if v.len() >= len {
+        v.truncate(len);
+    } else {
+        v.resize(len, 0);
+    }
     v
 }
 
-/// Gives a buffer back for [`zeroed`] to reuse.
+/// Gives a buffer, zero over its whole length, back for [`zeroed`] to reuse.
 fn recycle(v: Vec<u8>) {
     if v.capacity() == 0 || v.capacity() > SPARE_MAX_BYTES {
         return;
@@ -196,7 +200,8 @@ pub(crate) fn misplaced_pixels(
     let len = (width * height) as usize;
     let curved = commands.iter().any(|c| !matches!(c, PathCommand::Line(_)));
     let modes = if curved { clipping.modes() } else { &[false] };
-    let mut wrong: Option<Vec<u8>> = None;
+    // Indices (row-major in the window) of the painted pixels, of both modes.
+    let mut painted_at: Vec<usize> = Vec::new();
     for &clipped in modes {
         let painted = difference_path(reference, start, commands, x0 as f64, y0 as f64, clipped)
             .and_then(|path| {
@@ -209,45 +214,43 @@ pub(crate) fn misplaced_pixels(
                 );
                 Some(mask.take())
             });
-        let Some(painted) = painted else {
-            if let Some(w) = wrong {
-                recycle(w);
-            }
+        let Some(mut painted) = painted else {
             return everywhere();
         };
-        match &mut wrong {
-            None => wrong = Some(painted),
-            Some(w) => {
-                for (a, &b) in w.iter_mut().zip(&painted) {
-                    *a |= b;
-                }
-                recycle(painted);
-            }
-        }
+        take_painted(&mut painted, &mut painted_at);
+        recycle(painted);
     }
-    let Some(wrong) = wrong else {
-        return Vec::new();
-    };
-    let mut bad = Vec::new();
+    if modes.len() > 1 {
+        painted_at.sort_unstable();
+        painted_at.dedup();
+    }
     let w = width as usize;
+    painted_at
+        .into_iter()
+        .filter_map(|at| {
+            let (x, y) = (x0 + (at % w) as i64, y0 + (at / w) as i64);
+            Some(Pixel::new(i32::try_from(x).ok()?, i32::try_from(y).ok()?))
+        })
+        .collect()
+}
+
+/// Appends the indices of the non-zero bytes of `mask` to `at`, in order, and zeroes them:
+/// the buffer goes back to [`recycle`] all zero without being written whole (a fill paints
+/// few pixels of its window).
+fn take_painted(mask: &mut [u8], at: &mut Vec<usize>) {
     // Blocks of 64 bytes tested by an OR without early exit, which the compiler
     // vectorizes (a byte-by-byte `all` was three quarters of this function's own time).
-    for (block, bytes) in wrong.chunks(64).enumerate() {
+    for (block, bytes) in mask.chunks_mut(64).enumerate() {
         if bytes.iter().fold(0u8, |a, &b| a | b) == 0 {
             continue;
         }
-        for (k, &b) in bytes.iter().enumerate() {
-            if b != 0 {
-                let at = block * 64 + k;
-                let (x, y) = (x0 + (at % w) as i64, y0 + (at / w) as i64);
-                if let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) {
-                    bad.push(Pixel::new(px, py));
-                }
+        for (k, b) in bytes.iter_mut().enumerate() {
+            if *b != 0 {
+                at.push(block * 64 + k);
+                *b = 0;
             }
         }
     }
-    recycle(wrong);
-    bad
 }
 
 /// The path translated by `(−dx, −dy)` (whole pixels: exact for grid points) as tiny-skia's,
