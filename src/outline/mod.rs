@@ -263,13 +263,29 @@ fn exact_path(
                 let c = cracks_path(points);
                 Reference::new(c.start, &c.commands)
             });
+            // Unknown clipping draws curves both ways; the second way is only tried once
+            // the first draws every pixel right (what it finds then is remedied in the
+            // next round): one fill per round instead of two.
+            let first_way = match opts.clipping {
+                EdgeClipping::Unknown => EdgeClipping::Never,
+                known => known,
+            };
             let mut wrong = misplaced_pixels(
                 reference,
                 path.start,
                 &path.commands,
-                opts.clipping,
+                first_way,
                 opts.canvas,
             );
+            if wrong.is_empty() && first_way != opts.clipping {
+                wrong = misplaced_pixels(
+                    reference,
+                    path.start,
+                    &path.commands,
+                    EdgeClipping::Always,
+                    opts.canvas,
+                );
+            }
             if wrong.is_empty() {
                 // Exact in tiny-skia; also with the true curves (other renderers).
                 if let Some(fine) = finely_flattened(path.start, &path.commands) {
