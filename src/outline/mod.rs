@@ -32,6 +32,7 @@ mod band_cells;
 mod band_path;
 mod band_polygon;
 mod builder;
+mod coarse;
 mod corners;
 mod cracks;
 mod cut;
@@ -60,6 +61,7 @@ use crate::contour::Contour;
 use crate::decompose::Piece;
 use crate::model::Basis;
 use builder::Builder;
+use coarse::coarse_cracks;
 use corners::cut_staircase_corners;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
@@ -114,6 +116,10 @@ impl Default for OutlineOptions {
         }
     }
 }
+
+/// Fewest edges of a crack polygon replaced by its coarse stand-in in render checks: on
+/// smaller ones, building it costs more than the fills save (27 shared samples).
+const MIN_COARSE_CRACKS: usize = 256;
 
 /// Most rounds of drawing, render check and refinement per contour. Refinement halves the
 /// stretches that fail, so a stretch of `L` points reaches one or two points after about
@@ -261,7 +267,23 @@ fn exact_path(
             }
             let reference = reference.get_or_insert_with(|| {
                 let c = cracks_path(points);
-                Reference::new(c.start, &c.commands)
+                let cracks = Reference::new(c.start, &c.commands);
+                // The coarse stand-in, filled by tiny-skia exactly like the cracks (see
+                // `coarse`), with far fewer edges to set up in every fill.
+                let coarse = (c.commands.len() >= MIN_COARSE_CRACKS)
+                    .then(|| coarse_cracks(c.start, &c.commands))
+                    .flatten();
+                match coarse {
+                    Some((start, coarse)) => {
+                        debug_assert!(
+                            misplaced_pixels(&cracks, start, &coarse, EdgeClipping::Never, None)
+                                .is_empty(),
+                            "the coarse crack polygon fills differently"
+                        );
+                        Reference::new(start, &coarse)
+                    }
+                    None => cracks,
+                }
             });
             // Unknown clipping draws curves both ways; the second way is only tried once
             // the first draws every pixel right (what it finds then is remedied in the

@@ -72,7 +72,23 @@ impl Hull {
                 _ => (0..k).all(|i| cross(sub(v[(i + 1) % k], v[i]), sub(p, v[i])) >= 0),
             };
             if !inside {
-                self.rebuild(p);
+                match k {
+                    0 | 1 => v.push(p),
+                    2 => {
+                        let turn = cross(sub(v[1], v[0]), sub(p, v[0]));
+                        if turn > 0 {
+                            v.push(p);
+                        } else if turn < 0 {
+                            v.insert(1, p);
+                        } else if dot(sub(p, v[0]), sub(v[1], v[0])) < 0 {
+                            // On the line beyond v[0].
+                            v[0] = p;
+                        } else {
+                            v[1] = p;
+                        }
+                    }
+                    _ => self.rebuild(p),
+                }
             }
             return !inside;
         }
@@ -174,6 +190,18 @@ impl Separation {
     /// True while a line separates the sets strictly.
     pub(crate) fn separable(&self) -> bool {
         self.normals != Normals::None
+    }
+
+    /// A normal `n` of a separating line (`n·p < n·q` for every low `p` and high `q`), or
+    /// `None` when no line separates the sets.
+    pub(crate) fn normal(&self) -> Option<Dir> {
+        match self.normals {
+            Normals::None => None,
+            Normals::All => Some([1, 0]),
+            Normals::Arc { lo, hi } if cross(lo, hi) > 0 => Some([lo[0] + hi[0], lo[1] + hi[1]]),
+            // A half-circle: its middle, `lo` turned counter-clockwise.
+            Normals::Arc { lo, .. } => Some([-lo[1], lo[0]]),
+        }
     }
 
     /// Adds a point to the low side; returns [`Separation::separable`].
