@@ -1,5 +1,5 @@
-//! Renderer-safe cubics through an exact polygon: two straight segments become one smooth
-//! cubic that tiny-skia still draws as (nearly) those two segments.
+//! Renderer-safe cubics through an exact polygon: two or three straight segments become one
+//! smooth cubic that tiny-skia still draws as (nearly) those segments.
 //!
 //! tiny-skia and Skia draw a cubic as `2^k` chords between its points at `t = i / 2^k`, `k`
 //! chosen from how far the curve bends; a flat cubic (`k = 1`) is drawn as the two chords
@@ -15,25 +15,43 @@
 //! previous vertex to the next, as a Catmull–Rom spline has them, so consecutive cubics
 //! join smoothly), is drawn as that same polygon by the renderer and as a smooth curve by
 //! everything that draws curves exactly (a vector editor, a zoomed-in view): half the
-//! commands and no visible corners. Each such cubic is kept only if it changes no pixel
-//! (its control points are snapped to the grid, and bent ones get more chords): the loop
-//! from the cubic back along its two segments, filled alone by tiny-skia in a window of its
-//! own, must paint nothing. The others go back to their two segments.
+//! commands and no visible corners. Where the polygon bends too much for two chords, the
+//! cubic is placed for four ([`cubic_in_four_chords`]: `B(¼)` and `B(¾)` on the two
+//! segments), and three segments `A → M1 → M2 → B` may become one cubic with `B(¼) = M1`,
+//! `B(¾) = M2` ([`cubic_over_three`]). Each such cubic is kept only if it changes no pixel
+//! (its control points are snapped to the grid, and the renderer may cut it into more
+//! chords): the loop from the cubic back along its segments, filled alone by tiny-skia in
+//! a window of its own, and finely flattened, must paint nothing. The cubics of the last
+//! two kinds cross their polygon, so they must also paint nothing with their control points
+//! moved by 1/32 px (Skia's fixed point and Chromium's tiling cut them differently), and
+//! must bend enough that the renderer does not draw them in two chords.
 
 use super::builder::Builder;
 use super::render_check::{finely_flattened, misplaced_pixels, EdgeClipping, Reference};
 use crate::curve::PathCommand;
-use kurbo::{Point, Vec2};
+use kurbo::{ParamCurve, ParamCurveNearest, Point, Vec2};
 
 /// Largest turn (degrees) between two segments merged into a cubic: sharper turns are
 /// corners of the shape, not polygon vertices of a curve.
 pub const MAX_TURN_DEGREES: f64 = 40.0;
 
-/// A merge of commands `i` and `i + 1` (two lines) into one cubic.
+/// Largest turn (degrees) at a vertex a cubic that crosses its polygon replaces: sharper
+/// vertices are those of small shapes, whose polygon already strays from the true curve.
+pub const MAX_CROSSING_TURN_DEGREES: f64 = 25.0;
+
+/// Shortest segment (px) of a polygon a cubic that crosses it replaces, for the same reason.
+pub const MIN_CROSSING_SEGMENT: f64 = 5.0;
+
+/// Farthest (px) a cubic that crosses its polygon may stray from it.
+const MAX_OFF_POLYGON: f64 = 0.25;
+
+/// A merge of commands `i .. i + len` (two or three lines) into one cubic.
 #[derive(Clone, Copy)]
 struct Merge {
     /// Index of the first line.
     i: usize,
+    /// How many lines.
+    len: usize,
     cubic: PathCommand,
 }
 
@@ -69,7 +87,84 @@ fn cubic_through(
     Some([snap.snap(a + ta * alpha), snap.snap(b - tb * beta)])
 }
 
-/// Replaces pairs of consecutive lines flagged in `smooth` (both of the pair) by cubics where
+/// The cubic from `a` to `b` that tiny-skia, cutting it into four chords at `t = ¼, ½, ¾`,
+/// draws as the polygon `a → m → b`: `B(½) = m`, `B(¼)` on the line `a m` and `B(¾)` on the
+/// line `m b`, four linear equations in the two control points,
+///
+/// ```text
+/// 3 P1 + 3 P2 = 8 m − a − b,
+/// n1 · (27 P1 + 9 P2) = n1 · (37 a − b),          n1 ⟂ m − a,
+/// n2 · (9 P1 + 27 P2) = n2 · (64 m − a − 27 b),   n2 ⟂ b − m,
+/// ```
+///
+/// for bends too strong for [`cubic_through`]'s two chords. Control points snapped by
+/// `snap`. Returns `None` when the segments are parallel or a control point falls behind
+/// its end (the cubic would loop).
+fn cubic_in_four_chords(a: Point, m: Point, b: Point, snap: &Builder) -> Option<[Point; 2]> {
+    let (u, v) = (m - a, b - m);
+    let (n1, n2) = (Vec2::new(-u.y, u.x), Vec2::new(-v.y, v.x));
+    // P2 = s − P1.
+    let s = (m.to_vec2() * 8.0 - a.to_vec2() - b.to_vec2()) / 3.0;
+    // 18 n1·P1 = n1·(37 a − b − 9 s);  −18 n2·P1 = n2·(64 m − a − 27 b − 27 s).
+    let c1 = n1.dot(a.to_vec2() * 37.0 - b.to_vec2() - s * 9.0) / 18.0;
+    let c2 = -n2.dot(m.to_vec2() * 64.0 - a.to_vec2() - b.to_vec2() * 27.0 - s * 27.0) / 18.0;
+    let det = n1.cross(n2);
+    if det.abs() < 1e-9 * u.hypot2().max(v.hypot2()) {
+        return None;
+    }
+    // Solve n1·P = c1, n2·P = c2 (Cramer).
+    let p1 = Point::new((c1 * n2.y - c2 * n1.y) / det, (n1.x * c2 - n2.x * c1) / det);
+    let p2 = (s - p1.to_vec2()).to_point();
+    let ahead = (p1 - a).dot(u) > 0.0 && (b - p2).dot(v) > 0.0;
+    let reach = (b - a).hypot();
+    let near = (p1 - a).hypot() < reach && (b - p2).hypot() < reach;
+    (ahead && near).then(|| [snap.snap(p1), snap.snap(p2)])
+}
+
+/// The cubic from `a` to `b` with `B(¼) = m1` and `B(¾) = m2`, drawn by tiny-skia in four
+/// chords (or eight, through the same points) as the polygon `a → m1 → m2 → b` with its
+/// middle segment replaced by the two chords through `B(½)`:
+///
+/// ```text
+/// 27 P1 + 9 P2 = 64 m1 − 27 a − b,   9 P1 + 27 P2 = 64 m2 − a − 27 b.
+/// ```
+///
+/// Control points snapped by `snap`. Returns `None` when a control point falls behind its
+/// end (the cubic would loop).
+fn cubic_over_three(
+    a: Point,
+    m1: Point,
+    m2: Point,
+    b: Point,
+    snap: &Builder,
+) -> Option<[Point; 2]> {
+    let r1 = m1.to_vec2() * 64.0 - a.to_vec2() * 27.0 - b.to_vec2();
+    let r2 = m2.to_vec2() * 64.0 - a.to_vec2() - b.to_vec2() * 27.0;
+    let p1 = ((r1 * 27.0 - r2 * 9.0) / 648.0).to_point();
+    let p2 = ((r2 * 27.0 - r1 * 9.0) / 648.0).to_point();
+    let ahead = (p1 - a).dot(m1 - a) > 0.0 && (b - p2).dot(b - m2) > 0.0;
+    let reach = (b - a).hypot();
+    let near = (p1 - a).hypot() < reach && (b - p2).hypot() < reach;
+    (ahead && near).then(|| [snap.snap(p1), snap.snap(p2)])
+}
+
+/// How far tiny-skia and Skia estimate the cubic `a p1 p2 b` to bend, in 1/64 px
+/// (`cubic_delta_from_line` and `cheap_distance` of their `edge.rs`): below 48 they draw
+/// it in two chords, from 48 to 111 in four, from 112 in eight or more.
+fn chord_estimate(a: Point, p1: Point, p2: Point, b: Point) -> i64 {
+    let f = |v: f64| (v * 64.0) as i64;
+    let delta = |a: f64, b: f64, c: f64, d: f64| {
+        let (a, b, c, d) = (f(a), f(b), f(c), f(d));
+        let one_third = ((a * 8 - b * 15 + 6 * c + d) * 19) >> 9;
+        let two_third = ((a + 6 * b - c * 15 + d * 8) * 19) >> 9;
+        one_third.abs().max(two_third.abs())
+    };
+    let dx = delta(a.x, p1.x, p2.x, b.x);
+    let dy = delta(a.y, p1.y, p2.y, b.y);
+    dx.max(dy) + (dx.min(dy) >> 1)
+}
+
+/// Replaces runs of two or three consecutive lines flagged in `smooth` by cubics where
 /// the path still paints exactly what `reference` paints; see the module documentation.
 /// `start`, `commands` describe the closed path; `grid` is the builder's.
 pub(crate) fn smooth_polygon(
@@ -92,25 +187,118 @@ pub(crate) fn smooth_polygon(
         unit(next - prev)
     };
     let cos_max = MAX_TURN_DEGREES.to_radians().cos();
+    // Each merge on its own: the closed loop `A —cubic→ B → M → A` winds, round each pixel
+    // centre, the change the merge makes to the path's winding there (tiny-skia's scan
+    // converter sums each edge's crossings by itself, and a line drawn both ways cancels).
+    // The polygon is exact, so a merge whose loop paints no pixel in either of tiny-skia's
+    // edge modes, nor finely flattened, leaves every pixel as it was; and merges that each
+    // change nothing change nothing together. Small windows instead of whole-contour fills.
+    let changes_nothing = |j: usize, len: usize, cubic: PathCommand| {
+        let a = vertex(j);
+        let lp: Vec<PathCommand> = std::iter::once(cubic)
+            .chain((j..j + len).rev().map(|k| PathCommand::Line(vertex(k))))
+            .collect();
+        // The empty reference at A: the window is the loop's.
+        let nothing = Reference::new(a, &[]);
+        misplaced_pixels(&nothing, a, &lp, clipping, canvas).is_empty()
+            && finely_flattened(a, &lp).is_none_or(|fine| {
+                misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
+            })
+    };
+    // Cubics that cross their polygon keep every pixel when their control points move by
+    // 1/32 px: Skia's fixed point differs from tiny-skia's, and Chromium cuts paths at its
+    // tiles (1/64 px gave 11 differing pixels in Chromium over the 27 shared samples, conic;
+    // 1/32 px, 10; the polygons, 9).
+    let robust = |j: usize, len: usize, cubic: PathCommand| {
+        const D: f64 = 1.0 / 32.0;
+        let PathCommand::Cubic(p1, p2, e) = cubic else {
+            return false;
+        };
+        // Clearly more than two chords (Skia may round the estimate otherwise), and close to
+        // its polygon all along (no wiggle a zoomed-in view would show).
+        let a = vertex(j);
+        let cos_crossing = MAX_CROSSING_TURN_DEGREES.to_radians().cos();
+        let long =
+            (j..j + len).all(|v| (vertex(v + 1) - vertex(v)).hypot() >= MIN_CROSSING_SEGMENT);
+        let gentle = long
+            && (j + 1..j + len).all(|v| {
+                match (
+                    unit(vertex(v) - vertex(v - 1)),
+                    unit(vertex(v + 1) - vertex(v)),
+                ) {
+                    (Some(u), Some(w)) => u.dot(w) >= cos_crossing,
+                    _ => false,
+                }
+            });
+        let near_polygon = gentle
+            && (1..16).all(|k| {
+                let q = kurbo::CubicBez::new(a, p1, p2, e).eval(f64::from(k) / 16.0);
+                (j..j + len)
+                    .map(|s| {
+                        kurbo::Line::new(vertex(s), vertex(s + 1))
+                            .nearest(q, 1e-9)
+                            .distance_sq
+                    })
+                    .fold(f64::INFINITY, f64::min)
+                    <= MAX_OFF_POLYGON * MAX_OFF_POLYGON
+            });
+        near_polygon
+            && chord_estimate(a, p1, p2, e) >= 56
+            && changes_nothing(j, len, cubic)
+            && [(D, D), (D, -D), (-D, D), (-D, -D)]
+                .into_iter()
+                .all(|(dx, dy)| {
+                    let d = Vec2::new(dx, dy);
+                    changes_nothing(j, len, PathCommand::Cubic(p1 + d, p2 + d, e))
+                })
+    };
+    // Pairs from the first line on; a pair that cannot merge leaves its second line to the
+    // next pair.
     let mut merges: Vec<Merge> = Vec::new();
     let mut i = 0;
-    while i + 1 < n {
-        let ok = smooth[i] && smooth[i + 1] && is_line(i) && is_line(i + 1);
-        let (a, m, b) = (vertex(i), vertex(i + 1), vertex(i + 2));
+    // Lines j and j + 1 may be drawn as one curve.
+    let smooth_turn = |j: usize| {
+        let (a, m, b) = (vertex(j), vertex(j + 1), vertex(j + 2));
         let turn_ok = match (unit(m - a), unit(b - m)) {
             (Some(u), Some(v)) => u.dot(v) >= cos_max,
             _ => false,
         };
-        let cubic = (ok && turn_ok)
-            .then(|| Some((tangent(i)?, tangent(i + 2)?)))
-            .flatten()
-            .and_then(|(ta, tb)| cubic_through(a, m, b, ta, tb, &snap));
-        match cubic {
-            Some([p1, p2]) => {
-                merges.push(Merge {
-                    i,
-                    cubic: PathCommand::Cubic(p1, p2, b),
-                });
+        smooth[j] && smooth[j + 1] && is_line(j) && is_line(j + 1) && turn_ok
+    };
+    while i + 1 < n {
+        if !smooth_turn(i) {
+            i += 1;
+            continue;
+        }
+        let (a, m, b) = (vertex(i), vertex(i + 1), vertex(i + 2));
+        if i + 2 < n && smooth_turn(i + 1) {
+            let c = vertex(i + 3);
+            let three = cubic_over_three(a, m, b, c, &snap)
+                .map(|[p1, p2]| PathCommand::Cubic(p1, p2, c))
+                .filter(|&cubic| robust(i, 3, cubic));
+            if let Some(cubic) = three {
+                merges.push(Merge { i, len: 3, cubic });
+                i += 3;
+                continue;
+            }
+        }
+        // Drawn in two chords (smooth joins), else in four.
+        let two = || {
+            let (ta, tb) = (tangent(i)?, tangent(i + 2)?);
+            cubic_through(a, m, b, ta, tb, &snap)
+        };
+        let four = || cubic_in_four_chords(a, m, b, &snap);
+        let kept = two()
+            .map(|[p1, p2]| PathCommand::Cubic(p1, p2, b))
+            .filter(|&c| changes_nothing(i, 2, c))
+            .or_else(|| {
+                four()
+                    .map(|[p1, p2]| PathCommand::Cubic(p1, p2, b))
+                    .filter(|&c| robust(i, 2, c))
+            });
+        match kept {
+            Some(cubic) => {
+                merges.push(Merge { i, len: 2, cubic });
                 i += 2;
             }
             None => i += 1,
@@ -123,7 +311,7 @@ pub(crate) fn smooth_polygon(
         while j < n {
             if k < merges.len() && merges[k].i == j {
                 out.push(merges[k].cubic);
-                j += 2;
+                j += merges[k].len;
                 k += 1;
             } else {
                 out.push(commands[j]);
@@ -132,27 +320,77 @@ pub(crate) fn smooth_polygon(
         }
         out
     };
-    // Each merge on its own: the closed loop `A —cubic→ B → M → A` winds, round each pixel
-    // centre, the change the merge makes to the path's winding there (tiny-skia's scan
-    // converter sums each edge's crossings by itself, and a line drawn both ways cancels).
-    // The polygon is exact, so a merge whose loop paints no pixel in either of tiny-skia's
-    // edge modes, nor finely flattened, leaves every pixel as it was; and merges that each
-    // change nothing change nothing together. Small windows instead of whole-contour fills.
-    merges.retain(|m| {
-        let a = vertex(m.i);
-        let mid = vertex(m.i + 1);
-        let lp = [m.cubic, PathCommand::Line(mid), PathCommand::Line(a)];
-        // The empty reference at A: the window is the loop's.
-        let nothing = Reference::new(a, &[]);
-        misplaced_pixels(&nothing, a, &lp, clipping, canvas).is_empty()
-            && finely_flattened(a, &lp).is_none_or(|fine| {
-                misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
-            })
-    });
     let out = assemble(&merges);
     debug_assert!(
         misplaced_pixels(reference, start, &out, clipping, canvas).is_empty(),
         "a smoothed path misplaces pixels"
     );
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The point at `t` of the cubic `a p1 p2 b`.
+    fn at(a: Point, [p1, p2]: [Point; 2], b: Point, t: f64) -> Point {
+        kurbo::CubicBez::new(a, p1, p2, b).eval(t)
+    }
+
+    /// Distance from `p` to the line through `a` and `b`.
+    fn off_line(p: Point, a: Point, b: Point) -> f64 {
+        (b - a).cross(p - a).abs() / (b - a).hypot()
+    }
+
+    /// A polygon corner `a → m → b` with integer vertices, turning by 3° to 40°.
+    fn corner() -> impl Strategy<Value = [Point; 3]> {
+        let pt = || (-60i32..60, -60i32..60).prop_map(|(x, y)| Point::new(x.into(), y.into()));
+        (pt(), pt(), pt())
+            .prop_map(|(a, m, b)| [a, m, b])
+            .prop_filter("a gentle turn", |&[a, m, b]| {
+                let (u, v) = (m - a, b - m);
+                let turn = u.cross(v).atan2(u.dot(v)).abs().to_degrees();
+                u.hypot() >= 4.0 && v.hypot() >= 4.0 && (3.0..=MAX_TURN_DEGREES).contains(&turn)
+            })
+    }
+
+    /// Snapping to 1/64 px moves a point of the cubic by at most this.
+    const SNAPPED: f64 = 1.0 / 64.0;
+
+    proptest! {
+        /// The four chords at `t = ¼, ½, ¾` run along the polygon: `B(½) = m`, `B(¼)` on
+        /// the line `a m`, `B(¾)` on the line `m b`.
+        #[test]
+        fn four_chords_run_along_the_polygon([a, m, b] in corner()) {
+            if let Some(c) = cubic_in_four_chords(a, m, b, &Builder::new(6)) {
+                prop_assert!((at(a, c, b, 0.5) - m).hypot() <= SNAPPED);
+                prop_assert!(off_line(at(a, c, b, 0.25), a, m) <= SNAPPED);
+                prop_assert!(off_line(at(a, c, b, 0.75), m, b) <= SNAPPED);
+            }
+        }
+
+        /// Over three segments, `B(¼)` and `B(¾)` are the polygon's inner vertices.
+        #[test]
+        fn three_segments_keep_their_vertices(
+            [a, m1, m2] in corner(),
+            (dx, dy) in (-30i32..30, -30i32..30),
+        ) {
+            let b = m2 + Vec2::new(dx.into(), dy.into());
+            if let Some(c) = cubic_over_three(a, m1, m2, b, &Builder::new(6)) {
+                prop_assert!((at(a, c, b, 0.25) - m1).hypot() <= SNAPPED);
+                prop_assert!((at(a, c, b, 0.75) - m2).hypot() <= SNAPPED);
+            }
+        }
+    }
+
+    /// Two chords for a flat cubic, more for a bent one, as tiny-skia decides.
+    #[test]
+    fn chord_estimate_grows_with_the_bend() {
+        let (a, b) = (Point::new(0.0, 0.0), Point::new(30.0, 0.0));
+        let flat = chord_estimate(a, Point::new(10.0, 0.1), Point::new(20.0, 0.1), b);
+        let bent = chord_estimate(a, Point::new(10.0, 6.0), Point::new(20.0, 6.0), b);
+        assert!(flat < 48, "{flat}");
+        assert!(bent >= 112, "{bent}");
+    }
 }
