@@ -45,6 +45,11 @@ pub const MIN_CROSSING_SEGMENT: f64 = 5.0;
 /// Farthest (px) a cubic that crosses its polygon may stray from it.
 const MAX_OFF_POLYGON: f64 = 0.25;
 
+/// The chord estimate above which a cubic through the corner is not tried: the renderer
+/// draws it in four chords or more, which leave the corner (48 is tiny-skia's bound; 6% of
+/// those just above it passed anyway).
+const TWO_CHORDS_AT_MOST: i64 = 64;
+
 /// A merge of commands `i .. i + len` (two or three lines) into one cubic.
 #[derive(Clone, Copy)]
 struct Merge {
@@ -193,7 +198,8 @@ pub(crate) fn smooth_polygon(
     // The polygon is exact, so a merge whose loop paints no pixel in either of tiny-skia's
     // edge modes, nor finely flattened, leaves every pixel as it was; and merges that each
     // change nothing change nothing together. Small windows instead of whole-contour fills.
-    let changes_nothing = |j: usize, len: usize, cubic: PathCommand| {
+    // With `fine`, also the true curve (finely flattened).
+    let paints_nothing = |j: usize, len: usize, cubic: PathCommand, fine: bool| {
         let a = vertex(j);
         let lp: Vec<PathCommand> = std::iter::once(cubic)
             .chain((j..j + len).rev().map(|k| PathCommand::Line(vertex(k))))
@@ -201,10 +207,13 @@ pub(crate) fn smooth_polygon(
         // The empty reference at A: the window is the loop's.
         let nothing = Reference::new(a, &[]);
         misplaced_pixels(&nothing, a, &lp, clipping, canvas).is_empty()
-            && finely_flattened(a, &lp).is_none_or(|fine| {
-                misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
-            })
+            && (!fine
+                || finely_flattened(a, &lp).is_none_or(|fine| {
+                    misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
+                }))
     };
+    let changes_nothing =
+        |j: usize, len: usize, cubic: PathCommand| paints_nothing(j, len, cubic, true);
     // Cubics that cross their polygon keep every pixel when their control points move by
     // 1/32 px: Skia's fixed point differs from tiny-skia's, and Chromium cuts paths at its
     // tiles (1/64 px gave 11 differing pixels in Chromium over the 27 shared samples, conic;
@@ -249,7 +258,7 @@ pub(crate) fn smooth_polygon(
                 .into_iter()
                 .all(|(dx, dy)| {
                     let d = Vec2::new(dx, dy);
-                    changes_nothing(j, len, PathCommand::Cubic(p1 + d, p2 + d, e))
+                    paints_nothing(j, len, PathCommand::Cubic(p1 + d, p2 + d, e), false)
                 })
     };
     // Pairs from the first line on; a pair that cannot merge leaves its second line to the
@@ -285,7 +294,9 @@ pub(crate) fn smooth_polygon(
         // Drawn in two chords (smooth joins), else in four.
         let two = || {
             let (ta, tb) = (tangent(i)?, tangent(i + 2)?);
-            cubic_through(a, m, b, ta, tb, &snap)
+            let [p1, p2] = cubic_through(a, m, b, ta, tb, &snap)?;
+            // Only if the renderer may draw it in two chords.
+            (chord_estimate(a, p1, p2, b) < TWO_CHORDS_AT_MOST).then_some([p1, p2])
         };
         let four = || cubic_in_four_chords(a, m, b, &snap);
         let kept = two()
