@@ -299,23 +299,39 @@ mod tests {
         fn agrees_with_a_sweep(
             points in prop::collection::vec(((-6i64..6, -6i64..6), any::<bool>()), 1..9)
         ) {
-            let mut s = Separation::new();
-            let (mut low, mut high) = (Vec::new(), Vec::new());
-            for ((x, y), is_low) in points {
-                let p = [x, y];
-                if low.contains(&p) || high.contains(&p) {
-                    continue;
-                }
-                if is_low {
-                    s.add_low(p);
-                    low.push(p);
-                } else {
-                    s.add_high(p);
-                    high.push(p);
-                }
-                prop_assert_eq!(s.separable(), brute(&low, &high), "{:?} {:?}", low, high);
-            }
+            let points = points.into_iter().map(|((x, y), is_low)| ([x, y], is_low));
+            // Repeated points are left out.
+            replay(points, true, |s, low, high| {
+                prop_assert_eq!(s.separable(), brute(low, high), "{:?} {:?}", low, high);
+                Ok(())
+            })?;
         }
+    }
+
+    /// Adds `points` (each to the low side when its flag says so) one by one, leaving out
+    /// repeated points when `skip_repeats`, and calls `check` with the separation and the
+    /// sets after each.
+    fn replay(
+        points: impl IntoIterator<Item = (Dir, bool)>,
+        skip_repeats: bool,
+        mut check: impl FnMut(&Separation, &[Dir], &[Dir]) -> Result<(), TestCaseError>,
+    ) -> Result<(), TestCaseError> {
+        let mut s = Separation::new();
+        let (mut low, mut high) = (Vec::new(), Vec::new());
+        for (p, is_low) in points {
+            if skip_repeats && (low.contains(&p) || high.contains(&p)) {
+                continue;
+            }
+            if is_low {
+                s.add_low(p);
+                low.push(p);
+            } else {
+                s.add_high(p);
+                high.push(p);
+            }
+            check(&s, &low, &high)?;
+        }
+        Ok(())
     }
 
     /// Every pair constrains: the definition, quadratic.
@@ -337,20 +353,12 @@ mod tests {
         fn hull_vertices_answer_as_all_pairs(
             points in prop::collection::vec(((-5i64..5, -3i64..3), any::<bool>()), 1..40)
         ) {
-            let mut s = Separation::new();
-            let (mut low, mut high) = (Vec::new(), Vec::new());
-            for ((x, y), is_low) in points {
-                // A point in both sets is allowed: no line separates them then.
-                let p = [x + y, y];
-                if is_low {
-                    s.add_low(p);
-                    low.push(p);
-                } else {
-                    s.add_high(p);
-                    high.push(p);
-                }
-                prop_assert_eq!(s.separable(), all_pairs(&low, &high), "{:?} {:?}", low, high);
-            }
+            // A point in both sets is allowed: no line separates them then.
+            let points = points.into_iter().map(|((x, y), is_low)| ([x + y, y], is_low));
+            replay(points, false, |s, low, high| {
+                prop_assert_eq!(s.separable(), all_pairs(low, high), "{:?} {:?}", low, high);
+                Ok(())
+            })?;
         }
 
         /// The hull holds exactly the points of the set's convex hull.

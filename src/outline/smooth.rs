@@ -198,7 +198,7 @@ pub(crate) fn smooth_polygon(
     // The polygon is exact, so a merge whose loop paints no pixel in either of tiny-skia's
     // edge modes, nor finely flattened, leaves every pixel as it was; and merges that each
     // change nothing change nothing together. Small windows instead of whole-contour fills.
-    // With `fine`, also the true curve (finely flattened).
+    // The true curve (finely flattened) is checked too when `fine`.
     let paints_nothing = |j: usize, len: usize, cubic: PathCommand, fine: bool| {
         let a = vertex(j);
         let lp: Vec<PathCommand> = std::iter::once(cubic)
@@ -212,33 +212,27 @@ pub(crate) fn smooth_polygon(
                     misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
                 }))
     };
-    let changes_nothing =
-        |j: usize, len: usize, cubic: PathCommand| paints_nothing(j, len, cubic, true);
-    // Cubics that cross their polygon keep every pixel when their control points move by
-    // 1/32 px: Skia's fixed point differs from tiny-skia's, and Chromium cuts paths at its
-    // tiles (1/64 px gave 11 differing pixels in Chromium over the 27 shared samples, conic;
-    // 1/32 px, 10; the polygons, 9).
+    // The cosine of the turn at vertex v; `None` beside a zero-length segment.
+    let turn_cos =
+        |v: usize| Some(unit(vertex(v) - vertex(v - 1))?.dot(unit(vertex(v + 1) - vertex(v))?));
+    // A cubic that crosses its polygon (lines j .. j + len) is kept when it replaces gentle
+    // vertices between long segments, bends clearly beyond two chords (Skia may round the
+    // estimate otherwise), stays near its polygon all along (no wiggle a zoomed-in view
+    // would show), changes nothing, and still changes nothing in tiny-skia with its control
+    // points moved by 1/32 px: Skia's fixed point differs from tiny-skia's, and Chromium
+    // cuts paths at its tiles (1/64 px gave 11 differing pixels in Chromium over the 27
+    // shared samples, conic; 1/32 px, 10; the polygons, 9).
     let robust = |j: usize, len: usize, cubic: PathCommand| {
         const D: f64 = 1.0 / 32.0;
         let PathCommand::Cubic(p1, p2, e) = cubic else {
             return false;
         };
-        // Clearly more than two chords (Skia may round the estimate otherwise), and close to
-        // its polygon all along (no wiggle a zoomed-in view would show).
         let a = vertex(j);
         let cos_crossing = MAX_CROSSING_TURN_DEGREES.to_radians().cos();
         let long =
             (j..j + len).all(|v| (vertex(v + 1) - vertex(v)).hypot() >= MIN_CROSSING_SEGMENT);
-        let gentle = long
-            && (j + 1..j + len).all(|v| {
-                match (
-                    unit(vertex(v) - vertex(v - 1)),
-                    unit(vertex(v + 1) - vertex(v)),
-                ) {
-                    (Some(u), Some(w)) => u.dot(w) >= cos_crossing,
-                    _ => false,
-                }
-            });
+        let gentle =
+            long && (j + 1..j + len).all(|v| turn_cos(v).is_some_and(|c| c >= cos_crossing));
         let near_polygon = gentle
             && (1..16).all(|k| {
                 let q = kurbo::CubicBez::new(a, p1, p2, e).eval(f64::from(k) / 16.0);
@@ -253,7 +247,7 @@ pub(crate) fn smooth_polygon(
             });
         near_polygon
             && chord_estimate(a, p1, p2, e) >= 56
-            && changes_nothing(j, len, cubic)
+            && paints_nothing(j, len, cubic, true)
             && [(D, D), (D, -D), (-D, D), (-D, -D)]
                 .into_iter()
                 .all(|(dx, dy)| {
@@ -267,12 +261,11 @@ pub(crate) fn smooth_polygon(
     let mut i = 0;
     // Lines j and j + 1 may be drawn as one curve.
     let smooth_turn = |j: usize| {
-        let (a, m, b) = (vertex(j), vertex(j + 1), vertex(j + 2));
-        let turn_ok = match (unit(m - a), unit(b - m)) {
-            (Some(u), Some(v)) => u.dot(v) >= cos_max,
-            _ => false,
-        };
-        smooth[j] && smooth[j + 1] && is_line(j) && is_line(j + 1) && turn_ok
+        smooth[j]
+            && smooth[j + 1]
+            && is_line(j)
+            && is_line(j + 1)
+            && turn_cos(j + 1).is_some_and(|c| c >= cos_max)
     };
     while i + 1 < n {
         if !smooth_turn(i) {
@@ -301,7 +294,7 @@ pub(crate) fn smooth_polygon(
         let four = || cubic_in_four_chords(a, m, b, &snap);
         let kept = two()
             .map(|[p1, p2]| PathCommand::Cubic(p1, p2, b))
-            .filter(|&c| changes_nothing(i, 2, c))
+            .filter(|&c| paints_nothing(i, 2, c, true))
             .or_else(|| {
                 four()
                     .map(|[p1, p2]| PathCommand::Cubic(p1, p2, b))
