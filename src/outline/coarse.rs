@@ -21,7 +21,9 @@
 //! segments, and consecutive chains, meet by horizontal edges on row boundaries, which
 //! cross no row centre.
 
+use super::builder::Builder;
 use super::separation::Separation;
+use super::MAX_GRID;
 use crate::curve::PathCommand;
 use kurbo::Point;
 
@@ -36,11 +38,6 @@ const HALF_WIDTH: f64 = (CORRIDOR_64 as f64 + 0.5) / 64.0;
 
 /// Most rows one coarse edge spans (bounds tiny-skia's fixed-point drift along it).
 const MAX_ROWS: usize = 256;
-
-/// Vertices are multiples of 1/64 px, exact in tiny-skia's fixed point.
-fn snap(x: f64) -> f64 {
-    (x * 64.0).round() / 64.0
-}
 
 /// One row a chain crosses, in the chain's order: the row `k` (centre `k + ½`) and the
 /// crack's `x` there.
@@ -198,8 +195,10 @@ fn cover_chain(rows: &[Row], down: bool, out: &mut Vec<Point>) -> Option<()> {
         } else {
             (first + 1, last)
         };
-        let p = Point::new(snap(x_at(y0 as f64)), y0 as f64);
-        let q = Point::new(snap(x_at(y1 as f64)), y1 as f64);
+        // Vertices on the 1/64 px grid, exact in tiny-skia's fixed point (rows are integers).
+        let grid = Builder::new(MAX_GRID);
+        let p = grid.snap(Point::new(x_at(y0 as f64), y0 as f64));
+        let q = grid.snap(Point::new(x_at(y1 as f64), y1 as f64));
         let ok = rows[i..j].iter().all(|r| {
             let x = p.x + (q.x - p.x) * (r.k as f64 + 0.5 - p.y) / (q.y - p.y);
             (x - r.s).abs() <= HALF_WIDTH

@@ -50,6 +50,10 @@ const MAX_OFF_POLYGON: f64 = 0.25;
 /// those just above it passed anyway).
 const TWO_CHORDS_AT_MOST: i64 = 64;
 
+/// The chord estimate from which a cubic that crosses its polygon is tried: clearly above
+/// tiny-skia's two-chord bound (48), which Skia may round otherwise.
+const MORE_THAN_TWO_CHORDS: i64 = 56;
+
 /// A merge of commands `i .. i + len` (two or three lines) into one cubic.
 #[derive(Clone, Copy)]
 struct Merge {
@@ -120,7 +124,22 @@ fn cubic_in_four_chords(a: Point, m: Point, b: Point, snap: &Builder) -> Option<
     // Solve n1·P = c1, n2·P = c2 (Cramer).
     let p1 = Point::new((c1 * n2.y - c2 * n1.y) / det, (n1.x * c2 - n2.x * c1) / det);
     let p2 = (s - p1.to_vec2()).to_point();
-    let ahead = (p1 - a).dot(u) > 0.0 && (b - p2).dot(v) > 0.0;
+    unlooped(a, p1, p2, b, u, v, snap)
+}
+
+/// The control points `p1`, `p2` of the cubic from `a` to `b`, snapped by `snap`, when
+/// `p1` lies ahead of `a` along `ta` and `p2` behind `b` along `tb`, both within the
+/// chord's length; `None` otherwise (the cubic would loop or swing wide).
+fn unlooped(
+    a: Point,
+    p1: Point,
+    p2: Point,
+    b: Point,
+    ta: Vec2,
+    tb: Vec2,
+    snap: &Builder,
+) -> Option<[Point; 2]> {
+    let ahead = (p1 - a).dot(ta) > 0.0 && (b - p2).dot(tb) > 0.0;
     let reach = (b - a).hypot();
     let near = (p1 - a).hypot() < reach && (b - p2).hypot() < reach;
     (ahead && near).then(|| [snap.snap(p1), snap.snap(p2)])
@@ -147,10 +166,7 @@ fn cubic_over_three(
     let r2 = m2.to_vec2() * 64.0 - a.to_vec2() - b.to_vec2() * 27.0;
     let p1 = ((r1 * 27.0 - r2 * 9.0) / 648.0).to_point();
     let p2 = ((r2 * 27.0 - r1 * 9.0) / 648.0).to_point();
-    let ahead = (p1 - a).dot(m1 - a) > 0.0 && (b - p2).dot(b - m2) > 0.0;
-    let reach = (b - a).hypot();
-    let near = (p1 - a).hypot() < reach && (b - p2).hypot() < reach;
-    (ahead && near).then(|| [snap.snap(p1), snap.snap(p2)])
+    unlooped(a, p1, p2, b, m1 - a, b - m2, snap)
 }
 
 /// How far tiny-skia and Skia estimate the cubic `a p1 p2 b` to bend, in 1/64 px
@@ -201,14 +217,17 @@ pub(crate) fn smooth_polygon(
     // The true curve (finely flattened) is checked too when `fine`.
     let paints_nothing = |j: usize, len: usize, cubic: PathCommand, fine: bool| {
         let a = vertex(j);
-        let lp: Vec<PathCommand> = std::iter::once(cubic)
-            .chain((j..j + len).rev().map(|k| PathCommand::Line(vertex(k))))
-            .collect();
+        // At most three lines back.
+        let mut lp = [cubic; 4];
+        for (slot, k) in lp[1..].iter_mut().zip((j..j + len).rev()) {
+            *slot = PathCommand::Line(vertex(k));
+        }
+        let lp = &lp[..=len];
         // The empty reference at A: the window is the loop's.
         let nothing = Reference::new(a, &[]);
-        misplaced_pixels(&nothing, a, &lp, clipping, canvas).is_empty()
+        misplaced_pixels(&nothing, a, lp, clipping, canvas).is_empty()
             && (!fine
-                || finely_flattened(a, &lp).is_none_or(|fine| {
+                || finely_flattened(a, lp).is_none_or(|fine| {
                     misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
                 }))
     };
@@ -233,9 +252,10 @@ pub(crate) fn smooth_polygon(
             (j..j + len).all(|v| (vertex(v + 1) - vertex(v)).hypot() >= MIN_CROSSING_SEGMENT);
         let gentle =
             long && (j + 1..j + len).all(|v| turn_cos(v).is_some_and(|c| c >= cos_crossing));
-        let near_polygon = gentle
-            && (1..16).all(|k| {
-                let q = kurbo::CubicBez::new(a, p1, p2, e).eval(f64::from(k) / 16.0);
+        let bez = kurbo::CubicBez::new(a, p1, p2, e);
+        let near_polygon = || {
+            (1..16).all(|k| {
+                let q = bez.eval(f64::from(k) / 16.0);
                 (j..j + len)
                     .map(|s| {
                         kurbo::Line::new(vertex(s), vertex(s + 1))
@@ -244,9 +264,11 @@ pub(crate) fn smooth_polygon(
                     })
                     .fold(f64::INFINITY, f64::min)
                     <= MAX_OFF_POLYGON * MAX_OFF_POLYGON
-            });
-        near_polygon
-            && chord_estimate(a, p1, p2, e) >= 56
+            })
+        };
+        gentle
+            && chord_estimate(a, p1, p2, e) >= MORE_THAN_TWO_CHORDS
+            && near_polygon()
             && paints_nothing(j, len, cubic, true)
             && [(D, D), (D, -D), (-D, D), (-D, -D)]
                 .into_iter()
