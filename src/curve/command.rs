@@ -40,6 +40,20 @@ impl PartialEq for PathCommand {
 }
 
 impl PathCommand {
+    /// The command moved by `v`.
+    pub fn translated(self, v: kurbo::Vec2) -> PathCommand {
+        match self {
+            PathCommand::Line(p) => PathCommand::Line(p + v),
+            PathCommand::Quad(a, p) => PathCommand::Quad(a + v, p + v),
+            PathCommand::Cubic(a, b, p) => PathCommand::Cubic(a + v, b + v, p + v),
+            PathCommand::Arc(mut a) => {
+                a.from += v;
+                a.to += v;
+                PathCommand::Arc(a)
+            }
+        }
+    }
+
     /// The end point.
     pub fn end(&self) -> Point {
         match *self {

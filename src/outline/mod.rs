@@ -18,7 +18,9 @@
 //! side — the renderer cuts curves into chords, rounds vertices — the pieces there are
 //! *refined* ([`stretch`]): a curve becomes its exact polygon of digital straight segments
 //! (one `L` each), a straight segment that still fails is halved, down to one or two pixels
-//! drawn along their cracks. Rounds repeat until the renderer draws every point right. So
+//! drawn along their cracks. Rounds repeat until the renderer draws every point right, also
+//! with the whole path moved by 1/64 px sideways (`ROBUST_SHIFT`: Skia's cuts at
+//! Chromium's tile borders move edges that much). So
 //! cracks remain only where the input has one-pixel features, and curves remain wherever
 //! the renderer draws them right. Last, the corners inside the pixel staircases those
 //! cracks leave are cut ([`corners`]): half-pixel chamfers that keep every pixel centre on
@@ -58,6 +60,7 @@ pub(crate) use shapes::{ShapeKey, ShapeMemo};
 pub(crate) use staircase::has_staircase;
 
 use crate::contour::Contour;
+use crate::curve::PathCommand;
 use crate::decompose::Piece;
 use crate::model::Basis;
 use builder::Builder;
@@ -125,6 +128,14 @@ const MIN_COARSE_CRACKS: usize = 256;
 /// stretches that fail, so a stretch of `L` points reaches one or two points after about
 /// `log2 L` rounds.
 const MAX_ROUNDS: usize = 40;
+
+/// Sideways move (px) under which a drawing must stay exact: Chromium cuts paths at the
+/// borders of its 256-px raster tiles and rounds the new ends to 1/64 px, which moves an
+/// edge's crossing of a row of pixel centres by up to about that much. (Of the 9 pixels
+/// Chromium drew differently over the 27 shared samples, conic, 7 were on straight segments
+/// crossing a tile border, and cutting the segments there reproduced 6 of them in
+/// tiny-skia; where a page puts the tiles is unknown, hence a move rather than the cuts.)
+pub(crate) const ROBUST_SHIFT: f64 = 1.0 / 64.0;
 
 /// The whole contour along its cracks.
 fn cracks_path(points: &[crate::pixel::Pixel]) -> ContourPath {
@@ -313,6 +324,26 @@ fn exact_path(
                 if let Some(fine) = finely_flattened(path.start, &path.commands) {
                     wrong =
                         misplaced_pixels(reference, path.start, &fine, EdgeClipping::Never, None);
+                }
+            }
+            if wrong.is_empty() {
+                // Still exact with the whole path moved by 1/64 px sideways: no edge crosses
+                // a row of pixel centres within 1/64 px of a centre, where Skia's fixed point
+                // (Chromium) may round it to the other side.
+                for d in [ROBUST_SHIFT, -ROBUST_SHIFT] {
+                    let v = kurbo::Vec2::new(d, 0.0);
+                    let shifted: Vec<PathCommand> =
+                        path.commands.iter().map(|c| c.translated(v)).collect();
+                    wrong = misplaced_pixels(
+                        reference,
+                        path.start + v,
+                        &shifted,
+                        first_way,
+                        opts.canvas,
+                    );
+                    if !wrong.is_empty() {
+                        break;
+                    }
                 }
             }
             if wrong.is_empty() {
