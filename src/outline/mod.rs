@@ -60,7 +60,6 @@ pub(crate) use shapes::{ShapeKey, ShapeMemo};
 pub(crate) use staircase::has_staircase;
 
 use crate::contour::Contour;
-use crate::curve::PathCommand;
 use crate::decompose::Piece;
 use crate::model::Basis;
 use builder::Builder;
@@ -69,7 +68,7 @@ use corners::cut_staircase_corners;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
 use nearest::{nearest_points, points_near};
-use render_check::{finely_flattened, misplaced_pixels, Reference};
+use render_check::{finely_flattened, misplaced_pixels, misplaced_when_moved, Reference};
 use smooth::smooth_polygon;
 use stretch::{Drawing, Stretch, Stretcher, Unused};
 
@@ -330,21 +329,14 @@ fn exact_path(
                 // Still exact with the whole path moved by 1/64 px sideways: no edge crosses
                 // a row of pixel centres within 1/64 px of a centre, where Skia's fixed point
                 // (Chromium) may round it to the other side.
-                for d in [ROBUST_SHIFT, -ROBUST_SHIFT] {
-                    let v = kurbo::Vec2::new(d, 0.0);
-                    let shifted: Vec<PathCommand> =
-                        path.commands.iter().map(|c| c.translated(v)).collect();
-                    wrong = misplaced_pixels(
-                        reference,
-                        path.start + v,
-                        &shifted,
-                        first_way,
-                        opts.canvas,
-                    );
-                    if !wrong.is_empty() {
-                        break;
-                    }
-                }
+                wrong = misplaced_when_moved(
+                    reference,
+                    path.start,
+                    &path.commands,
+                    ROBUST_SHIFT,
+                    first_way,
+                    opts.canvas,
+                );
             }
             if wrong.is_empty() {
                 let mut path = path;

@@ -323,6 +323,27 @@ fn difference_path(
 /// Largest distance (pixels) of the polyline [`finely_flattened`] draws to the true curves.
 pub const FINE_FLATTENING: f64 = 0.01;
 
+/// [`misplaced_pixels`] of the path moved by `shift` px sideways, then by `-shift`: the
+/// pixels the first move that misplaces any gets wrong (empty when neither does).
+pub(crate) fn misplaced_when_moved(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    shift: f64,
+    clipping: EdgeClipping,
+    canvas: Option<Rect>,
+) -> Vec<Pixel> {
+    for d in [shift, -shift] {
+        let v = kurbo::Vec2::new(d, 0.0);
+        let moved: Vec<PathCommand> = commands.iter().map(|c| c.translated(v)).collect();
+        let wrong = misplaced_pixels(reference, start + v, &moved, clipping, canvas);
+        if !wrong.is_empty() {
+            return wrong;
+        }
+    }
+    Vec::new()
+}
+
 /// The path with its curves flattened within [`FINE_FLATTENING`]: what a renderer more
 /// precise than tiny-skia draws. A path both this and tiny-skia's chords draw exactly is
 /// drawn exactly by renderers in between (Skia's versions in browsers subdivide curves a

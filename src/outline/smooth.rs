@@ -27,7 +27,9 @@
 //! must bend enough that the renderer does not draw them in two chords.
 
 use super::builder::Builder;
-use super::render_check::{finely_flattened, misplaced_pixels, EdgeClipping, Reference};
+use super::render_check::{
+    finely_flattened, misplaced_pixels, misplaced_when_moved, EdgeClipping, Reference,
+};
 use super::ROBUST_SHIFT;
 use crate::curve::PathCommand;
 use kurbo::{ParamCurve, ParamCurveNearest, Point, Vec2};
@@ -209,18 +211,6 @@ pub(crate) fn smooth_polygon(
         unit(next - prev)
     };
     let cos_max = MAX_TURN_DEGREES.to_radians().cos();
-    // The loop still paints nothing moved sideways by `ROBUST_SHIFT` (see there).
-    let shifted_nothing = |a: Point, lp: &[PathCommand]| {
-        [ROBUST_SHIFT, -ROBUST_SHIFT].into_iter().all(|d| {
-            let v = Vec2::new(d, 0.0);
-            let mut moved = [PathCommand::Line(a); 4];
-            for (m, c) in moved.iter_mut().zip(lp) {
-                *m = c.translated(v);
-            }
-            let nothing = Reference::new(a + v, &[]);
-            misplaced_pixels(&nothing, a + v, &moved[..lp.len()], clipping, canvas).is_empty()
-        })
-    };
     // Each merge on its own: the closed loop `A —cubic→ B → M → A` winds, round each pixel
     // centre, the change the merge makes to the path's winding there (tiny-skia's scan
     // converter sums each edge's crossings by itself, and a line drawn both ways cancels).
@@ -239,7 +229,10 @@ pub(crate) fn smooth_polygon(
         // The empty reference at A: the window is the loop's.
         let nothing = Reference::new(a, &[]);
         misplaced_pixels(&nothing, a, lp, clipping, canvas).is_empty()
-            && (!fine || shifted_nothing(a, lp))
+            // Nor moved sideways by `ROBUST_SHIFT` (see there).
+            && (!fine
+                || misplaced_when_moved(&nothing, a, lp, ROBUST_SHIFT, clipping, canvas)
+                    .is_empty())
             && (!fine
                 || finely_flattened(a, lp).is_none_or(|fine| {
                     misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
