@@ -111,8 +111,13 @@ pub(super) fn unit_tangent(poly: &Polynomial, p: Point) -> Option<Vec2> {
 /// The point of the curve `poly = 0` closest to `point`, if within `max_distance`.
 ///
 /// Newton steps along the gradient reach the curve; then the point slides along the tangent
-/// until `point − q` is normal to the curve (linear convergence, fast where the distance is
-/// small compared to the radius of curvature).
+/// until `point − q` is normal to the curve. With `φ = (point − q)·t` (unit tangent `t`),
+/// a slide of arc length `φ` converges linearly, slowly where the distance is not small
+/// compared to the radius of curvature. On a conic the slide is a Newton step on `φ` along
+/// the curve instead: `dφ/ds = −1 + k h`, with `h = (point − q)·n` (unit normal `n = ∇f /
+/// |∇f|`) and the curvature `k = −tᵀHt / |∇f|` (`H` the constant Hessian), so it slides by
+/// `φ / (1 − k h)` (plainly by `φ` where `1 − k h < 1/4`: near the centre of curvature the
+/// step would blow up).
 ///
 /// Returns `None` if no point of the curve is found within `max_distance`, or on non-finite
 /// input.
@@ -132,7 +137,11 @@ pub fn project(poly: &Polynomial, point: Point, max_distance: f64) -> Option<Poi
         if s.abs() <= 1e-12 * (1.0 + best_d) {
             break;
         }
-        let Some(q2) = newton_to_curve(poly, q + t * s, reach) else {
+        let step = match slide_factor(poly, q, point, t) {
+            Some(f) => s / f,
+            None => s,
+        };
+        let Some(q2) = newton_to_curve(poly, q + t * step, reach) else {
             break;
         };
         q = q2;
@@ -145,11 +154,34 @@ pub fn project(poly: &Polynomial, point: Point, max_distance: f64) -> Option<Poi
     (best_d <= max_distance).then_some(best)
 }
 
+/// For a conic: `1 − k h` at the point `q` of the curve, with unit tangent `t` (see
+/// [`project`]); `None` for higher degrees, a vanishing gradient, or a value below 1/4.
+fn slide_factor(poly: &Polynomial, q: Point, point: Point, t: Vec2) -> Option<f64> {
+    if poly.top > 2 {
+        return None;
+    }
+    let g = poly.gradient(q);
+    let gn = g.hypot();
+    if !(gn > 0.0 && gn.is_finite()) {
+        return None;
+    }
+    let c = &poly.local;
+    // tᵀHt with H = [[2 c₂₀, c₁₁], [c₁₁, 2 c₀₂]].
+    let tht = 2.0 * (c[3] * t.x * t.x + c[4] * t.x * t.y + c[5] * t.y * t.y);
+    let k = -tht / gn;
+    let h = (point - q).dot(g / gn);
+    let f = 1.0 - k * h;
+    (f >= 0.25 && f.is_finite()).then_some(f)
+}
+
 /// The intersection point of `p = 0` and `q = 0` closest to `near`, within `max_distance`.
 ///
-/// Runs Newton's method on the 2×2 system from `near`, from the projections of `near` on both
-/// curves and from 16 points on two circles around `near`; keeps the converged solutions
-/// (each curve within 1e-7 by [`Polynomial::distance_estimate`]).
+/// Two lines meet where a 2×2 linear system says, and a line meets a conic at the roots of
+/// a quadratic along the line: both in closed form ([`line_meets_line`], [`line_meets_conic`]).
+/// Other curves: Newton's method on the 2×2 system from `near`, from the projections of
+/// `near` on both curves and from 16 points on two circles around `near`, keeping the
+/// converged solutions. Either way an answer lies on each curve within 1e-7 by
+/// [`Polynomial::distance_estimate`].
 ///
 /// Returns `None` if no intersection is found within `max_distance`, or on non-finite input.
 pub fn intersect_near(
@@ -161,6 +193,29 @@ pub fn intersect_near(
     if !near.is_finite() || max_distance < 0.0 || !max_distance.is_finite() {
         return None;
     }
+    let closed = match (p.top, q.top) {
+        (1, 1) => Some(line_meets_line(p, q, near)),
+        (1, 2) => Some(line_meets_conic(p, q, near)),
+        (2, 1) => Some(line_meets_conic(q, p, near)),
+        _ => None,
+    };
+    if let Some(x) = closed {
+        return x.filter(|&x| {
+            (x - near).hypot() <= max_distance
+                && p.distance_estimate(x) <= 1e-7
+                && q.distance_estimate(x) <= 1e-7
+        });
+    }
+    intersect_by_newton(p, q, near, max_distance)
+}
+
+/// [`intersect_near`] by Newton's method from many starts (any degrees).
+fn intersect_by_newton(
+    p: &Polynomial,
+    q: &Polynomial,
+    near: Point,
+    max_distance: f64,
+) -> Option<Point> {
     let mut starts = vec![near];
     starts.extend(project(p, near, max_distance));
     starts.extend(project(q, near, max_distance));
@@ -180,6 +235,79 @@ pub fn intersect_near(
         }
     }
     best.map(|(x, _)| x)
+}
+
+/// The crossing of two lines (degree 1), from their values and gradients at `near`: `None`
+/// when they are parallel.
+fn line_meets_line(p: &Polynomial, q: &Polynomial, near: Point) -> Option<Point> {
+    let ((fp, gp), (fq, gq)) = (p.value_and_gradient(near), q.value_and_gradient(near));
+    let det = gp.x * gq.y - gp.y * gq.x;
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let step = Vec2::new((gq.y * fp - gp.y * fq) / det, (gp.x * fq - gq.x * fp) / det);
+    let x = near - step;
+    x.is_finite().then_some(x)
+}
+
+/// The point where the line `line = 0` meets the conic `conic = 0` closest to `near`.
+///
+/// With `x₀` the foot of `near` on the line and `u` the line's unit direction, the conic
+/// along the line is `g(t) = conic(x₀ + t u) = c + b t + a t²` with `c = conic(x₀)`,
+/// `b = ∇conic(x₀)·u` and `a = uᵀHu / 2` (`H` its constant Hessian); of the real roots
+/// (computed without cancellation), the one nearer `t = 0` is nearer `near`, whose offset
+/// from the line is common to both. One Newton step on the system polishes it. `None` when
+/// the line misses the conic.
+fn line_meets_conic(line: &Polynomial, conic: &Polynomial, near: Point) -> Option<Point> {
+    let (fl, gl) = line.value_and_gradient(near);
+    let gn2 = gl.hypot2();
+    if !(gn2 > 0.0 && gn2.is_finite() && fl.is_finite()) {
+        return None;
+    }
+    let x0 = near - gl * (fl / gn2);
+    let u = Vec2::new(-gl.y, gl.x) / gn2.sqrt();
+    let (c, g) = conic.value_and_gradient(x0);
+    let b = g.dot(u);
+    let k = &conic.local;
+    let a = k[3] * u.x * u.x + k[4] * u.x * u.y + k[5] * u.y * u.y;
+    let t = if a == 0.0 {
+        if b == 0.0 {
+            return None;
+        }
+        -c / b
+    } else {
+        let disc = b * b - 4.0 * a * c;
+        if disc < 0.0 || !disc.is_finite() {
+            return None;
+        }
+        // The two roots are q / a and c / q; the smaller in size is nearer x₀.
+        let sign = if b >= 0.0 { 1.0 } else { -1.0 };
+        let q = -0.5 * (b + sign * disc.sqrt());
+        if q == 0.0 {
+            0.0 // b = 0 and a double root at x₀ (c = 0)
+        } else {
+            let (r1, r2) = (q / a, c / q);
+            if r1.abs() <= r2.abs() {
+                r1
+            } else {
+                r2
+            }
+        }
+    };
+    let x = x0 + u * t;
+    if !x.is_finite() {
+        return None;
+    }
+    // One Newton step on both equations (the line's value is rounding only).
+    let ((fl, gl), (fc, gc)) = (line.value_and_gradient(x), conic.value_and_gradient(x));
+    let det = gl.x * gc.y - gl.y * gc.x;
+    if det != 0.0 && det.is_finite() {
+        let step = Vec2::new((gc.y * fl - gl.y * fc) / det, (gl.x * fc - gc.x * fl) / det);
+        if step.is_finite() {
+            return Some(x - step);
+        }
+    }
+    Some(x)
 }
 
 fn newton_system(
@@ -294,6 +422,43 @@ mod tests {
             let bound = distance_bound(&poly, p, 10.0).expect("a bound near the curve");
             assert_le(d, bound + 1e-9, "bound at least the distance");
             assert_le(bound - d, 1e-3, "bound close to the distance near the curve");
+        }
+    }
+
+    proptest! {
+        /// A line and a conic (or two lines): the closed form finds a point on both curves,
+        /// never farther from `near` than what Newton's method from many starts finds, and
+        /// finds one whenever that does.
+        #[test]
+        fn closed_form_intersections_match_newton(
+            (conic, on) in conic_through_a_point(),
+            angle in 0.0..std::f64::consts::PI,
+            (dx, dy) in (-1.0..1.0f64, -1.0..1.0f64),
+            straight in any::<bool>(),
+        ) {
+            // A line through a point near the conic's point `on`.
+            let through = on + Vec2::new(dx, dy) * 0.5;
+            let (s, c) = angle.sin_cos();
+            let line = Polynomial::new(&[(1, 0, s), (0, 1, -c), (0, 0, c * through.y - s * through.x)])
+                .unwrap();
+            let other = if straight {
+                let (s2, c2) = (angle + 0.7).sin_cos();
+                Polynomial::new(&[(1, 0, s2), (0, 1, -c2), (0, 0, c2 * on.y - s2 * on.x)]).unwrap()
+            } else {
+                conic
+            };
+            let near = on + Vec2::new(dy, -dx);
+            let closed = intersect_near(&line, &other, near, 3.0);
+            let newton = intersect_by_newton(&line, &other, near, 3.0);
+            if let Some(x) = closed {
+                assert_le(line.distance_estimate(x), 1e-7, "on the line");
+                assert_le(other.distance_estimate(x), 1e-7, "on the other curve");
+                assert_le((x - near).hypot(), 3.0, "within the distance asked");
+            }
+            if let Some(n) = newton {
+                let x = closed.expect("the closed form finds what Newton finds");
+                assert_le((x - near).hypot(), (n - near).hypot() + 1e-9, "the nearest");
+            }
         }
     }
 
