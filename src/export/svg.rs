@@ -87,6 +87,19 @@ pub struct SvgOutput {
     pub joins: JoinCounts,
 }
 
+/// Appends the decimal digits of `n`, zero-padded to `width` digits (without the
+/// formatting machinery: a large SVG writes millions of numbers).
+fn push_digits(mut n: u64, width: usize, s: &mut String) {
+    let mut buf = [0u8; 20];
+    let mut k = buf.len();
+    while n > 0 || buf.len() - k < width {
+        k -= 1;
+        buf[k] = b'0' + (n % 10) as u8;
+        n /= 10;
+    }
+    s.extend(buf[k..].iter().map(|&b| char::from(b)));
+}
+
 /// Formats `v` with at most `precision` decimals, trailing zeros stripped, no `-0` (also
 /// the number writer of the PDF and EPS exports).
 pub(crate) fn number(v: f64, precision: usize, s: &mut String) {
@@ -106,14 +119,15 @@ pub(crate) fn number(v: f64, precision: usize, s: &mut String) {
             }
             let (scale, n) = (scale as u64, n.unsigned_abs());
             let (int, mut frac) = (n / scale, n % scale);
-            let _ = write!(s, "{int}");
+            push_digits(int, 1, s);
             if frac != 0 {
                 let mut digits = precision;
                 while frac % 10 == 0 {
                     frac /= 10;
                     digits -= 1;
                 }
-                let _ = write!(s, ".{frac:0digits$}");
+                s.push('.');
+                push_digits(frac, digits, s);
             }
             return;
         }
