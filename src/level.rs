@@ -94,7 +94,7 @@ pub fn polynomial_of(
     if basis.point_dim() != 2 || origin.len() != 2 || a.len() != basis.dim() {
         return None;
     }
-    let functions = basis.polynomials()?;
+    let functions = crate::model::terms_of(basis)?;
     let mut monomials = Vec::new();
     let mut coefficients = Vec::new();
     for (f, &a) in functions.iter().zip(a) {

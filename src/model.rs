@@ -45,6 +45,21 @@ pub trait Basis: Send + Sync + fmt::Debug {
     fn polynomials(&self) -> Option<Vec<Terms>> {
         None
     }
+    /// [`Basis::polynomials`] borrowed, for bases that hold them (no copy per call: the
+    /// exporter asks for every piece and segment). Returns `None` when the basis does not
+    /// hold them; [`Basis::polynomials`] may still give them.
+    fn polynomial_terms(&self) -> Option<&[Terms]> {
+        None
+    }
+}
+
+/// The basis functions of `basis` as polynomials ([`Basis::polynomial_terms`], else
+/// [`Basis::polynomials`]), or `None` when it has none.
+pub(crate) fn terms_of(basis: &dyn Basis) -> Option<std::borrow::Cow<'_, [Terms]>> {
+    match basis.polynomial_terms() {
+        Some(t) => Some(std::borrow::Cow::Borrowed(t)),
+        None => basis.polynomials().map(std::borrow::Cow::Owned),
+    }
 }
 
 /// A basis whose functions are integer polynomials, e.g. `x^2+y^2` or `x*y`.
@@ -177,6 +192,10 @@ impl Basis for PolynomialBasis {
 
     fn polynomials(&self) -> Option<Vec<Terms>> {
         Some(self.functions.clone())
+    }
+
+    fn polynomial_terms(&self) -> Option<&[Terms]> {
+        Some(&self.functions)
     }
 }
 

@@ -212,11 +212,11 @@ fn exact_path(
         OutlineOptions::default().tolerance
     };
     let grid = opts.grid.min(MAX_GRID);
+    let mut st = Stretcher::new(points, tolerance);
     // Polygons that replace curves may become renderer-safe cubics; the line model's stay
     // straight.
-    let smooth = basis.dim() != crate::model::Model::Line.basis().dim();
+    let smooth = !st.is_line_basis(basis);
     let mut fallbacks = FallbackCounts::default();
-    let mut st = Stretcher::new(points, tolerance);
     let mut stretches: Vec<Stretch> = Vec::with_capacity(pieces.len());
     // Consecutive pieces whose curves are unused share one polygon: its segments run across
     // the pieces' ends instead of stopping at each.

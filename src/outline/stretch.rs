@@ -16,7 +16,7 @@ use super::vertices::side_pixels;
 use crate::curve::Polynomial;
 use crate::decompose::{neighbour_sides, OutlierRule, Piece};
 use crate::level::{border_polynomial, polynomial_of};
-use crate::model::{Basis, Model};
+use crate::model::{Basis, Model, PolynomialBasis};
 use crate::pixel::{Pixel, PixelSet};
 use crate::recognize::max_margin_direction;
 use kurbo::Point;
@@ -86,6 +86,8 @@ pub(crate) struct Stretcher<'a> {
     /// Sets [`Stretcher::polygon`] clears and refills for each segment (kept for their
     /// capacity: growing them anew cost 4% of the run).
     scratch: [PixelSet; 3],
+    /// The line model's basis, built once (its functions are owned vectors).
+    line: PolynomialBasis,
 }
 
 impl<'a> Stretcher<'a> {
@@ -96,7 +98,13 @@ impl<'a> Stretcher<'a> {
             next_id: 0,
             tolerance,
             scratch: Default::default(),
+            line: Model::Line.basis(),
         }
+    }
+
+    /// True when `basis` is the line model's (as far as its dimension tells: 2).
+    pub fn is_line_basis(&self, basis: &dyn Basis) -> bool {
+        basis.dim() == self.line.dim()
     }
 
     fn id(&mut self) -> usize {
@@ -131,7 +139,7 @@ impl<'a> Stretcher<'a> {
         // background beside the piece outside, and for a piece described under `Any` the
         // two rules give the same outliers (none can be one of its pixels, which lie in the
         // layer, not strictly beside it).
-        let straight = basis.dim() == Model::Line.basis().dim();
+        let straight = self.is_line_basis(basis);
         let border = straight
             .then(|| self.closed_border(basis, piece.first, piece.last, false))
             .flatten()
@@ -166,7 +174,6 @@ impl<'a> Stretcher<'a> {
         let points = self.points;
         let n = points.len();
         let xy = |p: Pixel| [i64::from(p.x), i64::from(p.y)];
-        let basis = Model::Line.basis();
         let mut out = Vec::new();
         let mut i = first;
         let [mut in_piece, mut high, mut low] = std::mem::take(&mut self.scratch);
@@ -206,7 +213,7 @@ impl<'a> Stretcher<'a> {
                 }
                 j += 1;
             }
-            out.push(self.segment(&basis, i, j));
+            out.push(self.segment(i, j));
             i = j + 1;
         }
         self.scratch = [in_piece, high, low];
@@ -216,9 +223,9 @@ impl<'a> Stretcher<'a> {
     /// The stretch of the straight segment `first..=last` along the line of largest margin
     /// between its points (with the foreground beside them) and the background beside
     /// them; cracks when there is none.
-    fn segment(&mut self, basis: &dyn Basis, first: usize, last: usize) -> Stretch {
+    fn segment(&mut self, first: usize, last: usize) -> Stretch {
         let id = self.id();
-        match self.closed_border(basis, first, last, false) {
+        match self.closed_border(&self.line, first, last, false) {
             Some((poly, clearance)) => Stretch {
                 first,
                 last,
@@ -306,10 +313,9 @@ impl<'a> Stretcher<'a> {
             // gets its own largest-margin line, no recognition needed.
             // (A piece of the line model need not be one with its end pixels' background:
             // a half without such a line is decomposed again.)
-            let basis = Model::Line.basis();
             let mut out = Vec::new();
             for (a, b) in [(s.first, mid), (mid + 1, s.last)] {
-                let half = self.segment(&basis, a, b);
+                let half = self.segment(a, b);
                 if half.drawing == Drawing::Straight || a == b {
                     out.push(half);
                 } else {

@@ -160,9 +160,8 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
 fn is_line_basis(basis: &dyn Basis) -> bool {
     basis.point_dim() == 2
         && basis.dim() == 2
-        && basis
-            .polynomials()
-            .is_some_and(|f| f == [vec![(1, vec![1, 0])], vec![(1, vec![0, 1])]])
+        && crate::model::terms_of(basis)
+            .is_some_and(|f| *f == [vec![(1, vec![1, 0])], vec![(1, vec![0, 1])]])
 }
 
 /// [`max_margin_direction`] for the line basis, from the convex hulls
