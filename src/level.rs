@@ -95,8 +95,9 @@ pub fn polynomial_of(
         return None;
     }
     let functions = crate::model::terms_of(basis)?;
-    let mut monomials = Vec::new();
-    let mut coefficients = Vec::new();
+    let terms = functions.iter().map(Vec::len).sum();
+    let mut monomials = Vec::with_capacity(terms);
+    let mut coefficients = Vec::with_capacity(terms);
     for (f, &a) in functions.iter().zip(a) {
         if a == 0.0 || !a.is_finite() {
             continue;

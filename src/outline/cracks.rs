@@ -28,7 +28,9 @@ fn side(p: Pixel, d: u8) -> [Point; 2] {
 /// for `prev`/`next` (no neighbours: one-pixel contour) or non-adjacent input gives the whole
 /// square.
 fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut Vec<Point>) {
-    let dirs = match (
+    // At most 7 directions (no allocation: this runs for every pixel of every junction).
+    let mut dirs = [0u8; 8];
+    let count = match (
         prev.and_then(|p| cur.direction_to(p)),
         next.and_then(|q| cur.direction_to(q)),
     ) {
@@ -37,11 +39,17 @@ fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut
                 0 => 8,
                 s => s,
             };
-            (1..span).map(|k| (a + 8 - k) % 8).collect::<Vec<u8>>()
+            for k in 1..span {
+                dirs[usize::from(k - 1)] = (a + 8 - k) % 8;
+            }
+            usize::from(span - 1)
         }
-        _ => vec![6, 4, 2, 0],
+        _ => {
+            dirs[..4].copy_from_slice(&[6, 4, 2, 0]);
+            4
+        }
     };
-    for d in dirs.into_iter().filter(|d| d % 2 == 0) {
+    for &d in dirs[..count].iter().filter(|&&d| d % 2 == 0) {
         for q in side(cur, d) {
             if out.last() != Some(&q) {
                 out.push(q);
@@ -53,10 +61,10 @@ fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut
 /// Crack corners of the pixels `first..=last` of a closed contour.
 pub(crate) fn crack_polyline(points: &[Pixel], first: usize, last: usize) -> Vec<Point> {
     let n = points.len();
-    let mut out = Vec::new();
     if n == 0 {
-        return out;
+        return Vec::new();
     }
+    let mut out = Vec::with_capacity(4 * (last.min(n - 1) + 1).saturating_sub(first) + 4);
     for i in first..=last.min(n - 1) {
         let (prev, next) = if n == 1 {
             (None, None)
