@@ -130,14 +130,17 @@ pub fn project(poly: &Polynomial, point: Point, max_distance: f64) -> Option<Poi
     let mut best = q;
     let mut best_d = (q - point).hypot();
     for _ in 0..100 {
-        let Some(t) = unit_tangent(poly, q) else {
+        let g = poly.gradient(q);
+        let gn = g.hypot();
+        if !(gn > 0.0 && gn.is_finite()) {
             break;
-        };
+        }
+        let (n, t) = (g / gn, Vec2::new(-g.y / gn, g.x / gn));
         let s = (point - q).dot(t);
         if s.abs() <= 1e-12 * (1.0 + best_d) {
             break;
         }
-        let step = match slide_factor(poly, q, point, t) {
+        let step = match slide_factor(poly, gn, n, t, (point - q).dot(n)) {
             Some(f) => s / f,
             None => s,
         };
@@ -154,22 +157,18 @@ pub fn project(poly: &Polynomial, point: Point, max_distance: f64) -> Option<Poi
     (best_d <= max_distance).then_some(best)
 }
 
-/// For a conic: `1 − k h` at the point `q` of the curve, with unit tangent `t` (see
-/// [`project`]); `None` for higher degrees, a vanishing gradient, or a value below 1/4.
-fn slide_factor(poly: &Polynomial, q: Point, point: Point, t: Vec2) -> Option<f64> {
+/// For a conic: `1 − k h` (see [`project`]) at a point of the curve where the gradient has
+/// length `gn`, the unit normal is `n` and the unit tangent `t`, for a point `h` along `n`
+/// from it; `None` for higher degrees or a value below 1/4.
+fn slide_factor(poly: &Polynomial, gn: f64, n: Vec2, t: Vec2, h: f64) -> Option<f64> {
     if poly.top > 2 {
         return None;
     }
-    let g = poly.gradient(q);
-    let gn = g.hypot();
-    if !(gn > 0.0 && gn.is_finite()) {
-        return None;
-    }
+    debug_assert!((n.dot(t)).abs() < 1e-9, "normal and tangent");
     let c = &poly.local;
     // tᵀHt with H = [[2 c₂₀, c₁₁], [c₁₁, 2 c₀₂]].
     let tht = 2.0 * (c[3] * t.x * t.x + c[4] * t.x * t.y + c[5] * t.y * t.y);
     let k = -tht / gn;
-    let h = (point - q).dot(g / gn);
     let f = 1.0 - k * h;
     (f >= 0.25 && f.is_finite()).then_some(f)
 }
@@ -240,13 +239,8 @@ fn intersect_by_newton(
 /// The crossing of two lines (degree 1), from their values and gradients at `near`: `None`
 /// when they are parallel.
 fn line_meets_line(p: &Polynomial, q: &Polynomial, near: Point) -> Option<Point> {
-    let ((fp, gp), (fq, gq)) = (p.value_and_gradient(near), q.value_and_gradient(near));
-    let det = gp.x * gq.y - gp.y * gq.x;
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let step = Vec2::new((gq.y * fp - gp.y * fq) / det, (gp.x * fq - gq.x * fp) / det);
-    let x = near - step;
+    // For two lines one Newton step from anywhere is exact.
+    let x = near - system_step(p, q, near)?;
     x.is_finite().then_some(x)
 }
 
@@ -299,15 +293,22 @@ fn line_meets_conic(line: &Polynomial, conic: &Polynomial, near: Point) -> Optio
         return None;
     }
     // One Newton step on both equations (the line's value is rounding only).
-    let ((fl, gl), (fc, gc)) = (line.value_and_gradient(x), conic.value_and_gradient(x));
-    let det = gl.x * gc.y - gl.y * gc.x;
-    if det != 0.0 && det.is_finite() {
-        let step = Vec2::new((gc.y * fl - gl.y * fc) / det, (gl.x * fc - gc.x * fl) / det);
-        if step.is_finite() {
-            return Some(x - step);
-        }
+    Some(system_step(line, conic, x).map_or(x, |step| x - step))
+}
+
+/// The Newton step of the system `p = 0`, `q = 0` at `x` (to subtract from `x`): zero on
+/// both curves, `None` where the gradients are parallel or the step is not finite.
+fn system_step(p: &Polynomial, q: &Polynomial, x: Point) -> Option<Vec2> {
+    let ((fp, gp), (fq, gq)) = (p.value_and_gradient(x), q.value_and_gradient(x));
+    if fp == 0.0 && fq == 0.0 {
+        return Some(Vec2::ZERO);
     }
-    Some(x)
+    let det = gp.x * gq.y - gp.y * gq.x;
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let step = Vec2::new((gq.y * fp - gp.y * fq) / det, (gp.x * fq - gq.x * fp) / det);
+    step.is_finite().then_some(step)
 }
 
 fn newton_system(
@@ -319,17 +320,9 @@ fn newton_system(
 ) -> Option<Point> {
     let mut x = start;
     for _ in 0..80 {
-        let ((fp, gp), (fq, gq)) = (p.value_and_gradient(x), q.value_and_gradient(x));
-        if fp == 0.0 && fq == 0.0 {
+        let step = system_step(p, q, x)?;
+        if step == Vec2::ZERO {
             break;
-        }
-        let det = gp.x * gq.y - gp.y * gq.x;
-        if det == 0.0 || !det.is_finite() {
-            return None;
-        }
-        let step = Vec2::new((gq.y * fp - gp.y * fq) / det, (gp.x * fq - gq.x * fp) / det);
-        if !step.is_finite() {
-            return None;
         }
         x -= step;
         if (x - near).hypot() > 2.0 * max_distance + 1e-9 {
