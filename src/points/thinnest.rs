@@ -80,7 +80,7 @@ fn lift_exact(basis: &dyn Basis, p: &[i64]) -> Option<Vec<BigInt>> {
     if basis.lift(p, &mut f).is_some() {
         return Some(f.into_iter().map(BigInt::from).collect());
     }
-    let functions = basis.polynomials()?;
+    let functions = crate::model::terms_of(basis)?;
     let values = functions
         .iter()
         .map(|terms| {

@@ -149,7 +149,7 @@ fn solve(columns: &[Poly], target: &Poly) -> Option<Vec<BigRational>> {
 /// the basis is not polynomial, its span is not closed under this translation, or the
 /// coefficients are not integers.
 pub(crate) fn absolute(basis: &dyn Basis, cert: &Certificate) -> Option<Layer> {
-    let functions = basis.polynomials()?;
+    let functions = crate::model::terms_of(basis)?;
     let d = basis.point_dim();
     if functions.len() != cert.coefficients.len() || cert.origin.len() != d {
         return None;
@@ -191,7 +191,7 @@ pub(crate) fn evaluate(basis: &dyn Basis, coefficients: &[BigInt], p: &[i64]) ->
             return Some(BigInt::from(v));
         }
     }
-    let functions = basis.polynomials()?;
+    let functions = crate::model::terms_of(basis)?;
     let mut sum = BigInt::zero();
     for (terms, a) in functions.iter().zip(coefficients) {
         if a.is_zero() {
