@@ -229,9 +229,7 @@ pub(crate) fn smooth_polygon(
         // The empty reference at A: the window is the loop's.
         let nothing = Reference::new(a, &[]);
         // Moved sideways by `ROBUST_SHIFT` (see there) first: the check that fails most.
-        (!fine
-            || misplaced_when_moved(&nothing, a, lp, ROBUST_SHIFT, clipping, canvas)
-                .is_empty())
+        (!fine || misplaced_when_moved(&nothing, a, lp, ROBUST_SHIFT, clipping, canvas).is_empty())
             && misplaced_pixels(&nothing, a, lp, clipping, canvas).is_empty()
             && (!fine
                 || finely_flattened(a, lp).is_none_or(|fine| {
