@@ -228,7 +228,7 @@ pub(crate) fn smooth_polygon(
         let lp = &lp[..=len];
         // The empty reference at A: the window is the loop's.
         let nothing = Reference::new(a, &[]);
-        // Moved sideways by `ROBUST_SHIFT` (see there) first: the check that fails most.
+        // Moved sideways by `ROBUST_SHIFT` (see there) first, as the contour check does.
         (!fine || misplaced_when_moved(&nothing, a, lp, ROBUST_SHIFT, clipping, canvas).is_empty())
             && misplaced_pixels(&nothing, a, lp, clipping, canvas).is_empty()
             && (!fine
