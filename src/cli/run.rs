@@ -227,15 +227,15 @@ pub fn one(
         )?;
     }
     outs.commit()?;
-    let name = if stdin {
-        "<stdin>".into()
-    } else {
-        input.display().to_string()
-    };
     // Not computed when it is not shown: classifying every piece took 1% of a run on noise.
     let summary = if args.quiet {
         String::new()
     } else {
+        let name = if stdin {
+            "<stdin>".into()
+        } else {
+            input.display().to_string()
+        };
         summary(&name, &v, options, start)
     };
     Ok(Finished { report, summary })

@@ -165,12 +165,16 @@ fn slide_factor(poly: &Polynomial, gn: f64, n: Vec2, t: Vec2, h: f64) -> Option<
         return None;
     }
     debug_assert!((n.dot(t)).abs() < 1e-9, "normal and tangent");
-    let c = &poly.local;
-    // tᵀHt with H = [[2 c₂₀, c₁₁], [c₁₁, 2 c₀₂]].
-    let tht = 2.0 * (c[3] * t.x * t.x + c[4] * t.x * t.y + c[5] * t.y * t.y);
-    let k = -tht / gn;
+    let k = -2.0 * quadratic_part(poly, t) / gn;
     let f = 1.0 - k * h;
     (f >= 0.25 && f.is_finite()).then_some(f)
+}
+
+/// The degree-2 part of `poly` at the vector `u`: `c₂₀ u_x² + c₁₁ u_x u_y + c₀₂ u_y²`, which
+/// is `uᵀHu / 2` for a conic (`H` its constant Hessian).
+fn quadratic_part(poly: &Polynomial, u: Vec2) -> f64 {
+    let c = &poly.local;
+    c[3] * u.x * u.x + c[4] * u.x * u.y + c[5] * u.y * u.y
 }
 
 /// The intersection point of `p = 0` and `q = 0` closest to `near`, within `max_distance`.
@@ -262,8 +266,7 @@ fn line_meets_conic(line: &Polynomial, conic: &Polynomial, near: Point) -> Optio
     let u = Vec2::new(-gl.y, gl.x) / gn2.sqrt();
     let (c, g) = conic.value_and_gradient(x0);
     let b = g.dot(u);
-    let k = &conic.local;
-    let a = k[3] * u.x * u.x + k[4] * u.x * u.y + k[5] * u.y * u.y;
+    let a = quadratic_part(conic, u);
     let t = if a == 0.0 {
         if b == 0.0 {
             return None;
