@@ -58,6 +58,10 @@ pub(crate) struct Memo {
     projections: HashMap<(usize, [u64; 2]), Option<Point>>,
     /// The centres each straight segment separates, by stretch id.
     sides: HashMap<usize, Sides>,
+    /// The shared vertex (or `None`) of two straight segments at their junction, by their
+    /// stretch ids and their other ends (which may be vertices shared with their other
+    /// neighbours): every round asked again for the same junctions.
+    shared: HashMap<(usize, usize, [u64; 4]), Option<Point>>,
 }
 
 /// A drawing and the stretches that could not be drawn along their curve in it.
@@ -209,18 +213,27 @@ pub(crate) fn build(
                 .entry(s.id)
                 .or_insert_with(|| Sides::of(points, s.first, s.last));
         }
-        let v = shared_vertex(
-            points,
-            stretches[j].last,
-            stretches[k].first,
-            starts[j],
-            ends[j],
-            starts[k],
-            ends[k],
-            &memo.sides[&stretches[j].id],
-            &memo.sides[&stretches[k].id],
-            |p| b.snap(p),
+        // (`ends[j]` and `starts[k]`, the projections of the junction on the two lines,
+        // are fixed by the stretches.)
+        let key = (
+            stretches[j].id,
+            stretches[k].id,
+            [starts[j].x, starts[j].y, ends[k].x, ends[k].y].map(f64::to_bits),
         );
+        let v = *memo.shared.entry(key).or_insert_with(|| {
+            shared_vertex(
+                points,
+                stretches[j].last,
+                stretches[k].first,
+                starts[j],
+                ends[j],
+                starts[k],
+                ends[k],
+                &memo.sides[&stretches[j].id],
+                &memo.sides[&stretches[k].id],
+                |p| b.snap(p),
+            )
+        });
         if let Some(v) = v {
             shared[j] = true;
             ends[j] = v;
