@@ -14,7 +14,8 @@
 //!   at the projection of the nearer crack corner.
 //! * Two straight segments of the exact polygon bridged that way share one vertex instead
 //!   where both still separate their pixels from the background ([`super::vertices`]),
-//!   unless the render check asked for the bridge back (`keep_bridge`).
+//!   unless the render check asked for the bridge back (`keep_bridge`); a straight segment
+//!   bridged to a curve ends (or starts) where the curve does, on the same terms.
 //! * A contour of one stretch with a curve runs once round it, from and back to the
 //!   projection of `m`.
 //!
@@ -26,7 +27,7 @@ use super::builder::Builder;
 use super::cracks::{centre, crack_polyline};
 use super::path::ContourPath;
 use super::stretch::{Drawing, Stretch};
-use super::vertices::{shared_vertex, Sides};
+use super::vertices::{separates, shared_vertex, Sides};
 use crate::curve::{intersect_near, level_curve_path, project, LevelPath, PathCommand};
 use crate::pixel::Pixel;
 use kurbo::{BezPath, Point};
@@ -202,9 +203,38 @@ pub(crate) fn build(
     // Straight segments bridged at a junction share a vertex where they can.
     let straight = |k: usize| use_curve[k] && stretches[k].drawing == Drawing::Straight;
     let mut shared = vec![false; m];
+    let curve = |k: usize| use_curve[k] && stretches[k].drawing == Drawing::Curve;
     for j in 0..m {
         let k = (j + 1) % m;
-        if j == k || keep_bridge[j] || !bridged[j] || !straight(j) || !straight(k) {
+        if j == k || keep_bridge[j] || !bridged[j] {
+            continue;
+        }
+        // A straight segment beside a curve ends (or starts) where the curve does, when
+        // it still keeps its sides apart from there: no bridge.
+        if (straight(j) && curve(k)) || (curve(j) && straight(k)) {
+            let i = if straight(j) { j } else { k };
+            let s = &stretches[i];
+            let sides = memo
+                .sides
+                .entry(s.id)
+                .or_insert_with(|| Sides::of(points, s.first, s.last));
+            // Where the curve's end is written.
+            let v = b.snap(if i == j { starts[k] } else { ends[j] });
+            let ok = if i == j {
+                separates(b.snap(starts[j]), v, sides)
+            } else {
+                separates(v, b.snap(ends[k]), sides)
+            };
+            if ok {
+                shared[j] = true;
+                ends[j] = v;
+                starts[k] = v;
+                out.joins.shared += 1;
+                out.joins.bridged -= 1;
+            }
+            continue;
+        }
+        if !straight(j) || !straight(k) {
             continue;
         }
         for i in [j, k] {
