@@ -102,6 +102,13 @@ fn stays_near(from: Point, cmds: &[PathCommand], pixels: &[Pixel]) -> bool {
     b.x0 >= allowed.x0 && b.y0 >= allowed.y0 && b.x1 <= allowed.x1 && b.y1 <= allowed.y1
 }
 
+/// The centres straight segment `s` separates, computed once per stretch.
+fn sides_of<'m>(memo: &'m mut Memo, points: &[Pixel], s: &Stretch) -> &'m Sides {
+    memo.sides
+        .entry(s.id)
+        .or_insert_with(|| Sides::of(points, s.first, s.last))
+}
+
 /// One drawing of a contour's `stretches` on the grid of `2^-grid` px; `cracked[j]` draws
 /// the end pixel of stretch `j` and the start pixel of the next one along their cracks.
 pub(crate) fn build(
@@ -200,70 +207,53 @@ pub(crate) fn build(
             }
         }
     }
-    // Straight segments bridged at a junction share a vertex where they can.
+    // Straight segments bridged at a junction share a vertex where they can; a straight
+    // segment beside a curve ends (or starts) where the curve does, when it still keeps
+    // its sides apart from there.
     let straight = |k: usize| use_curve[k] && stretches[k].drawing == Drawing::Straight;
-    let mut shared = vec![false; m];
     let curve = |k: usize| use_curve[k] && stretches[k].drawing == Drawing::Curve;
+    let mut shared = vec![false; m];
     for j in 0..m {
         let k = (j + 1) % m;
         if j == k || keep_bridge[j] || !bridged[j] {
             continue;
         }
-        // A straight segment beside a curve ends (or starts) where the curve does, when
-        // it still keeps its sides apart from there: no bridge.
-        if (straight(j) && curve(k)) || (curve(j) && straight(k)) {
-            let i = if straight(j) { j } else { k };
-            let s = &stretches[i];
-            let sides = memo
-                .sides
-                .entry(s.id)
-                .or_insert_with(|| Sides::of(points, s.first, s.last));
-            // Where the curve's end is written.
-            let v = b.snap(if i == j { starts[k] } else { ends[j] });
-            let ok = if i == j {
-                separates(b.snap(starts[j]), v, sides)
-            } else {
-                separates(v, b.snap(ends[k]), sides)
-            };
-            if ok {
-                shared[j] = true;
-                ends[j] = v;
-                starts[k] = v;
-                out.joins.shared += 1;
-                out.joins.bridged -= 1;
-            }
-            continue;
-        }
-        if !straight(j) || !straight(k) {
-            continue;
-        }
-        for i in [j, k] {
-            let s = &stretches[i];
-            memo.sides
-                .entry(s.id)
-                .or_insert_with(|| Sides::of(points, s.first, s.last));
-        }
-        // (`ends[j]` and `starts[k]`, the projections of the junction on the two lines,
-        // are fixed by the stretches.)
-        let key = (
-            stretches[j].id,
-            stretches[k].id,
-            [starts[j].x, starts[j].y, ends[k].x, ends[k].y].map(f64::to_bits),
-        );
-        let v = *memo.shared.entry(key).or_insert_with(|| {
-            shared_vertex(
-                points,
-                stretches[j].last,
-                stretches[k].first,
-                starts[j],
-                ends[j],
-                starts[k],
-                ends[k],
-                &memo.sides[&stretches[j].id],
-                &memo.sides[&stretches[k].id],
-                |p| b.snap(p),
-            )
-        });
+        let v = if straight(j) && straight(k) {
+            sides_of(memo, points, &stretches[j]);
+            sides_of(memo, points, &stretches[k]);
+            // (`ends[j]` and `starts[k]`, the projections of the junction on the two
+            // lines, are fixed by the stretches.)
+            let key = (
+                stretches[j].id,
+                stretches[k].id,
+                [starts[j].x, starts[j].y, ends[k].x, ends[k].y].map(f64::to_bits),
+            );
+            *memo.shared.entry(key).or_insert_with(|| {
+                shared_vertex(
+                    points,
+                    stretches[j].last,
+                    stretches[k].first,
+                    starts[j],
+                    ends[j],
+                    starts[k],
+                    ends[k],
+                    &memo.sides[&stretches[j].id],
+                    &memo.sides[&stretches[k].id],
+                    |p| b.snap(p),
+                )
+            })
+        } else if straight(j) && curve(k) {
+            // Where the curve's start is written.
+            let v = b.snap(starts[k]);
+            let sides = sides_of(memo, points, &stretches[j]);
+            separates(b.snap(starts[j]), v, sides).then_some(v)
+        } else if curve(j) && straight(k) {
+            let v = b.snap(ends[j]);
+            let sides = sides_of(memo, points, &stretches[k]);
+            separates(v, b.snap(ends[k]), sides).then_some(v)
+        } else {
+            None
+        };
         if let Some(v) = v {
             shared[j] = true;
             ends[j] = v;
