@@ -222,7 +222,8 @@ pub(crate) fn build(
             sides_of(memo, points, &stretches[j]);
             sides_of(memo, points, &stretches[k]);
             // (`ends[j]` and `starts[k]`, the projections of the junction on the two
-            // lines, are fixed by the stretches.)
+            // lines, are fixed by the stretches.) The outer ends are passed where they
+            // are written, so that the row check sees the segments tiny-skia will draw.
             let key = (
                 stretches[j].id,
                 stretches[k].id,
@@ -233,10 +234,10 @@ pub(crate) fn build(
                     points,
                     stretches[j].last,
                     stretches[k].first,
-                    starts[j],
+                    b.snap(starts[j]),
                     ends[j],
                     starts[k],
-                    ends[k],
+                    b.snap(ends[k]),
                     &memo.sides[&stretches[j].id],
                     &memo.sides[&stretches[k].id],
                     |p| b.snap(p),
