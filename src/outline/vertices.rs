@@ -177,16 +177,9 @@ pub(crate) fn shared_vertex(
         _ => None,
     };
     // Where the two segments' lines cross, if not far beyond the junction.
-    let crossing = {
-        let (d1, d2) = (end_j - u, w - start_k);
-        let den = d1.cross(d2);
-        (den != 0.0)
-            .then(|| {
-                let t = (start_k - u).cross(d2) / den;
-                u + d1 * t
-            })
-            .filter(|x| (*x - end_j.midpoint(start_k)).hypot() <= MAX_CROSSING_DISTANCE)
-    };
+    let crossing = line_crossing(u, end_j - u, start_k, w - start_k)
+        .map(|(t, _)| u + (end_j - u) * t)
+        .filter(|x| (*x - end_j.midpoint(start_k)).hypot() <= MAX_CROSSING_DISTANCE);
     let candidates = [
         Some(end_j.midpoint(start_k)),
         crossing,
@@ -208,12 +201,11 @@ pub(crate) fn shared_vertex(
         for fk in [0.5, 0.25, 0.75] {
             let dj = cj.direction(fj);
             let dk = ck.direction(fk);
-            let den = dj.cross(dk);
-            if den == 0.0 {
+            // `u + s dj = w + t dk`, ahead of both apexes (`dk` points from `w` back to the
+            // junction).
+            let Some((s, t)) = line_crossing(u, dj, w, dk) else {
                 continue;
-            }
-            let s = (w - u).cross(dk) / den;
-            let t = (w - u).cross(dj) / den;
+            };
             if s <= 0.0 || t <= 0.0 {
                 continue;
             }
@@ -226,6 +218,13 @@ pub(crate) fn shared_vertex(
     }
     found.sort_by(|a, b| a.0.total_cmp(&b.0));
     found.into_iter().map(|(_, v)| v).find(|&v| ok(v))
+}
+
+/// The parameters `(s, t)` where the lines `p + s dp` and `q + t dq` cross; `None` when
+/// they are parallel.
+fn line_crossing(p: Point, dp: Vec2, q: Point, dq: Vec2) -> Option<(f64, f64)> {
+    let den = dp.cross(dq);
+    (den != 0.0).then(|| ((q - p).cross(dq) / den, (q - p).cross(dp) / den))
 }
 
 /// The directions from an apex along which a line keeps a segment's two sides apart: the
