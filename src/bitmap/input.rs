@@ -151,7 +151,19 @@ pub fn default_max_memory() -> u64 {
     })
 }
 
+/// The physical memory (`MemTotal` of /proc/meminfo), in bytes: from `sysinfo(2)` on Linux,
+/// one system call instead of the kernel writing and the process parsing the whole file
+/// (0.3 ms of a 3-ms run).
+#[cfg(any(target_os = "linux", target_os = "android"))]
+fn mem_total() -> Option<u64> {
+    nix::sys::sysinfo::sysinfo()
+        .ok()
+        .map(|s| s.ram_total())
+        .filter(|&r| r > 0)
+}
+
 /// `MemTotal` of /proc/meminfo, in bytes.
+#[cfg(not(any(target_os = "linux", target_os = "android")))]
 fn mem_total() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     proc_field(&text, "MemTotal:")
@@ -179,7 +191,8 @@ fn proc_field(text: &str, name: &str) -> Option<u64> {
 #[cfg(unix)]
 fn rlimit_headroom() -> Vec<u64> {
     use nix::sys::resource::{getrlimit, Resource, RLIM_INFINITY};
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    // Read only when a limit is set (it mostly is not).
+    let mut status: Option<String> = None;
     let mut out = Vec::new();
     for (resource, field) in [
         (Resource::RLIMIT_AS, "VmSize:"),
@@ -187,7 +200,10 @@ fn rlimit_headroom() -> Vec<u64> {
     ] {
         if let Ok((soft, _)) = getrlimit(resource) {
             if soft != RLIM_INFINITY {
-                let used = proc_field(&status, field).unwrap_or(0);
+                let status = status.get_or_insert_with(|| {
+                    std::fs::read_to_string("/proc/self/status").unwrap_or_default()
+                });
+                let used = proc_field(status, field).unwrap_or(0);
                 out.push(soft.saturating_sub(used));
             }
         }
