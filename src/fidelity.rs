@@ -113,6 +113,70 @@ pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
     out
 }
 
+/// Renders `svg` onto a `width` × `height` mask as Chromium draws the document opened at 1:1
+/// with `shape-rendering="crispEdges"` (software raster, as headless Chromium does): tile by
+/// tile, each of 256 × 256 pixels overlapping its neighbours by two, drawn by resvg into a
+/// pixmap that is exactly the tile, so that tiny-skia's edge clipper cuts the path at the
+/// tile's border as Skia's does, and keeping the pixels the tile shows (see
+/// `outline::tiles`). Same errors as [`rasterize_svg`]; documents of at most 256 pixels
+/// both ways come out as [`rasterize_svg`] draws them.
+///
+/// ```
+/// use layertrace::{compare, rasterize_svg, rasterize_svg_in_tiles};
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="600" height="300" viewBox="0 0 600 300">
+///   <path d="M10 10L590 20L300 290Z"/></svg>"#;
+/// let tiled = rasterize_svg_in_tiles(svg, 600, 300)?;
+/// let whole = rasterize_svg(svg, 600, 300)?;
+/// // Where a tile's border cuts an edge, the part left inside is tilted a little: a few
+/// // pixel centres close to the edges change side.
+/// let d = compare(&whole, &tiled);
+/// assert!(d.differing > 0 && d.differing < 10);
+/// // Within one tile, nothing is cut.
+/// let small = r#"<svg xmlns="http://www.w3.org/2000/svg" width="200" height="100" viewBox="0 0 200 100">
+///   <path d="M3 3L197 10L100 97Z"/></svg>"#;
+/// assert_eq!(
+///     rasterize_svg_in_tiles(small, 200, 100)?,
+///     rasterize_svg(small, 200, 100)?
+/// );
+/// # Ok::<(), layertrace::Error>(())
+/// ```
+pub fn rasterize_svg_in_tiles(svg: &str, width: u32, height: u32) -> Result<Mask, Error> {
+    use crate::outline::tiles::tiles;
+    let options = usvg::Options {
+        shape_rendering: usvg::ShapeRendering::CrispEdges,
+        ..usvg::Options::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &options).map_err(|source| Error::SvgParse { source })?;
+    if width == 0 || height == 0 {
+        return Err(Error::Raster { width, height });
+    }
+    let mut mask = Mask::new(width, height);
+    let (w, h) = (i64::from(width), i64::from(height));
+    for (_, (cy0, cy1), (sy0, sy1)) in tiles(0, h, h) {
+        for (_, (cx0, cx1), (sx0, sx1)) in tiles(0, w, w) {
+            let (tw, th) = ((cx1 - cx0) as u32, (cy1 - cy0) as u32);
+            let mut pixmap = tiny_skia::Pixmap::new(tw, th).ok_or(Error::Raster {
+                width: tw,
+                height: th,
+            })?;
+            resvg::render(
+                &tree,
+                tiny_skia::Transform::from_translate(-cx0 as f32, -cy0 as f32),
+                &mut pixmap.as_mut(),
+            );
+            for y in sy0..sy1 {
+                for x in sx0..sx1 {
+                    let i = ((y - cy0) * i64::from(tw) + (x - cx0)) as usize;
+                    if pixmap.pixels()[i].alpha() > 0 {
+                        mask.set(x, y, true);
+                    }
+                }
+            }
+        }
+    }
+    Ok(mask)
+}
+
 /// The pixmap `resvg --shape-rendering crispEdges` paints for `svg`, at `width` × `height`.
 fn render(svg: &str, width: u32, height: u32) -> Result<tiny_skia::Pixmap, Error> {
     render_with(svg, width, height, usvg::ShapeRendering::CrispEdges)

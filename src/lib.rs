@@ -115,8 +115,8 @@ pub use export::layers::{layers_document, SvgLayer};
 pub use export::picture::decomposition_picture;
 pub use export::svg::{smooth_svg_document, svg_document, SvgOptions, SvgOutput};
 pub use fidelity::{
-    band_check, compare, diff_image, fidelity, rasterize_svg, staircases, BandCheck,
-    FidelityReport, StaircaseCount,
+    band_check, compare, diff_image, fidelity, rasterize_svg, rasterize_svg_in_tiles, staircases,
+    BandCheck, FidelityReport, StaircaseCount,
 };
 pub use fidelity::{colour_diff_image, colour_fidelity, ColourDiff, ColourFidelity};
 pub use level::{boundary_level, curve_kind, level_polynomial, piece_kind};

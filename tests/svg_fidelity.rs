@@ -8,9 +8,9 @@
 
 use kurbo::Point;
 use layertrace::{
-    compare, contour_path, decompose, diff_image, load_path, rasterize_svg, staircases,
-    svg_document, trace, Contour, Convention, Decomposition, FidelityReport, LoadOptions, Mask,
-    Model, OutlierRule, OutlineOptions, PathCommand, SvgOptions,
+    compare, contour_path, decompose, diff_image, load_path, rasterize_svg, rasterize_svg_in_tiles,
+    staircases, svg_document, trace, Contour, Convention, Decomposition, FidelityReport,
+    LoadOptions, Mask, Model, OutlierRule, OutlineOptions, PathCommand, SvgOptions,
 };
 use std::path::{Path, PathBuf};
 
@@ -46,7 +46,26 @@ fn json(name: &str) -> serde_json::Value {
 fn round_trip(tag: &str, expected: &Mask, svg: &str, bound: u64) -> Result<FidelityReport, String> {
     let actual = rasterize_svg(svg, expected.width(), expected.height())
         .map_err(|e| format!("{tag}: {e}"))?;
-    let r = compare(expected, &actual);
+    check(tag, expected, &actual, bound)
+}
+
+/// [`round_trip`] with the document drawn as Chromium draws it, tile by tile
+/// ([`rasterize_svg_in_tiles`]).
+fn tiled_round_trip(
+    tag: &str,
+    expected: &Mask,
+    svg: &str,
+    bound: u64,
+) -> Result<FidelityReport, String> {
+    let actual = rasterize_svg_in_tiles(svg, expected.width(), expected.height())
+        .map_err(|e| format!("{tag}: {e}"))?;
+    check(tag, expected, &actual, bound)
+}
+
+/// Compares `actual` with `expected`; when more than `bound` pixels differ, writes the
+/// pictures (see [`round_trip`]) and returns a message naming them.
+fn check(tag: &str, expected: &Mask, actual: &Mask, bound: u64) -> Result<FidelityReport, String> {
+    let r = compare(expected, actual);
     if r.differing <= bound {
         return Ok(r);
     }
@@ -63,8 +82,8 @@ fn round_trip(tag: &str, expected: &Mask, svg: &str, bound: u64) -> Result<Fidel
         })
     };
     let _ = img(expected).save(dir.join(format!("{tag}-expected.png")));
-    let _ = img(&actual).save(dir.join(format!("{tag}-actual.png")));
-    let _ = diff_image(expected, &actual).save(dir.join(format!("{tag}-diff.png")));
+    let _ = img(actual).save(dir.join(format!("{tag}-actual.png")));
+    let _ = diff_image(expected, actual).save(dir.join(format!("{tag}-diff.png")));
     Err(format!(
         "{tag}: {} differing ({} missing, {} extra) > {bound}; see {}/{tag}-{{expected,actual,diff}}.png (diff: red missing, blue extra)",
         r.differing,
@@ -367,6 +386,15 @@ fn sample_fidelity_does_not_regress() {
                     .replace("<path ", &format!("<path transform=\"translate({dx} 0)\" "));
                 if let Err(e) =
                     round_trip(&format!("{name}-{model}-moved{dx}"), &mask, &moved, bound)
+                {
+                    failures.push(e);
+                }
+            }
+            // Drawn as Chromium draws the document, in 256-px tiles that cut the path at
+            // their borders: exact too (only the two samples larger than a tile can differ).
+            if mask.width() > 256 || mask.height() > 256 {
+                if let Err(e) =
+                    tiled_round_trip(&format!("{name}-{model}-tiles"), &mask, &out.svg, bound)
                 {
                     failures.push(e);
                 }

@@ -20,7 +20,8 @@
 //! (one `L` each), a straight segment that still fails is halved, down to one or two pixels
 //! drawn along their cracks. Rounds repeat until the renderer draws every point right, also
 //! with the whole path moved by 1/64 px sideways (`ROBUST_SHIFT`: Skia's cuts at
-//! Chromium's tile borders move edges that much). So
+//! Chromium's tile borders move edges that much), and as Chromium draws the document opened
+//! at 1:1, tile by tile ([`tiles`]). So
 //! cracks remain only where the input has one-pixel features, and curves remain wherever
 //! the renderer draws them right. Last, the corners inside the pixel staircases those
 //! cracks leave are cut ([`corners`]): half-pixel chamfers that keep every pixel centre on
@@ -48,6 +49,7 @@ mod shapes;
 mod smooth;
 pub(crate) mod staircase;
 mod stretch;
+pub(crate) mod tiles;
 mod vertices;
 
 pub(crate) use band_path::band_contour_path;
@@ -71,6 +73,7 @@ use nearest::{nearest_points, points_near};
 use render_check::{finely_flattened, misplaced_pixels, misplaced_when_moved, Reference};
 use smooth::smooth_polygon;
 use stretch::{Drawing, Stretch, Stretcher, Unused};
+use tiles::misplaced_in_tiles;
 
 /// Finest grid: tiny-skia and Skia round vertices to 1/64 px.
 pub const MAX_GRID: u8 = 6;
@@ -130,10 +133,9 @@ const MAX_ROUNDS: usize = 40;
 
 /// Sideways move (px) under which a drawing must stay exact: Chromium cuts paths at the
 /// borders of its 256-px raster tiles and rounds the new ends to 1/64 px, which moves an
-/// edge's crossing of a row of pixel centres by up to about that much. (Of the 9 pixels
-/// Chromium drew differently over the 27 shared samples, conic, 7 were on straight segments
-/// crossing a tile border, and cutting the segments there reproduced 6 of them in
-/// tiny-skia; where a page puts the tiles is unknown, hence a move rather than the cuts.)
+/// edge's crossing of a row of pixel centres by up to about that much. Where the document
+/// is the page, the cuts themselves are checked ([`tiles`]); where a page puts a document
+/// embedded in it is unknown, hence this move as well.
 pub(crate) const ROBUST_SHIFT: f64 = 1.0 / 64.0;
 
 /// The whole contour along its cracks.
@@ -332,6 +334,10 @@ fn exact_path(
                     EdgeClipping::Always,
                     opts.canvas,
                 );
+            }
+            if wrong.is_empty() {
+                // Exact in Chromium's tiles too, where they cut the path (see `tiles`).
+                wrong = misplaced_in_tiles(reference, path.start, &path.commands, opts.canvas);
             }
             if wrong.is_empty() {
                 // Exact in tiny-skia; also with the true curves (other renderers).

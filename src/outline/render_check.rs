@@ -132,90 +132,162 @@ pub(crate) fn misplaced_pixels(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Vec<Pixel> {
-    let (mut lo, mut hi) = (reference.lo, reference.hi);
-    let mut grow = |p: Point| {
-        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-    };
-    grow(start);
-    for c in commands {
-        match *c {
-            PathCommand::Line(p) => grow(p),
-            PathCommand::Quad(a, p) => {
-                grow(a);
-                grow(p);
-            }
-            PathCommand::Cubic(a, b, p) => {
-                grow(a);
-                grow(b);
-                grow(p);
-            }
-            PathCommand::Arc(a) => {
-                // Not produced by the builder; bound the whole ellipse.
-                let r = a.radii.x.abs().max(a.radii.y.abs());
-                grow(a.to - kurbo::Vec2::new(r, r) * 2.0);
-                grow(a.to + kurbo::Vec2::new(r, r) * 2.0);
-            }
-        }
-    }
-    if !(lo.x.is_finite() && lo.y.is_finite() && hi.x.is_finite() && hi.y.is_finite()) {
-        lo = reference.lo;
-        hi = reference.hi;
-    }
-    let mut x0 = lo.x.floor() as i64 - 2;
-    let mut y0 = lo.y.floor() as i64 - 2;
-    let mut x1 = hi.x.ceil() as i64 + 2;
-    let mut y1 = hi.y.ceil() as i64 + 2;
+    let mut win = Window::round(reference, start, commands);
     // The window ends at the pixmap's border: tiny-skia clips the path there as it does in
     // the document (a curve crossing the border is cut at the crossing, which moves its
     // chords), and pixels outside are never drawn.
     if let Some(c) = canvas {
-        x0 = x0.max(c.x0.ceil() as i64);
-        y0 = y0.max(c.y0.ceil() as i64);
-        x1 = x1.min(c.x1.floor() as i64);
-        y1 = y1.min(c.y1.floor() as i64);
-        if x1 <= x0 || y1 <= y0 {
-            return Vec::new();
+        win = match win.within(Window::inside(c)) {
+            Some(w) => w,
+            None => return Vec::new(),
+        };
+    }
+    let curved = commands.iter().any(|c| !matches!(c, PathCommand::Line(_)));
+    let modes = if curved { clipping.modes() } else { &[false] };
+    painted_in(reference, start, commands, &win, modes)
+}
+
+/// A rectangle of whole pixels: columns `x0..x1`, rows `y0..y1`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Window {
+    pub(super) x0: i64,
+    pub(super) y0: i64,
+    pub(super) x1: i64,
+    pub(super) y1: i64,
+}
+
+impl Window {
+    /// The pixels round the path `M start commands Z` and `reference`, with two to spare
+    /// on every side (the scan converter keeps clipping off only when the conservatively
+    /// rounded bounds are inside the mask).
+    pub(super) fn round(reference: &Reference, start: Point, commands: &[PathCommand]) -> Window {
+        let (mut lo, mut hi) = (reference.lo, reference.hi);
+        let mut grow = |p: Point| {
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        };
+        grow(start);
+        for c in commands {
+            match *c {
+                PathCommand::Line(p) => grow(p),
+                PathCommand::Quad(a, p) => {
+                    grow(a);
+                    grow(p);
+                }
+                PathCommand::Cubic(a, b, p) => {
+                    grow(a);
+                    grow(b);
+                    grow(p);
+                }
+                PathCommand::Arc(a) => {
+                    // Not produced by the builder; bound the whole ellipse.
+                    let r = a.radii.x.abs().max(a.radii.y.abs());
+                    grow(a.to - kurbo::Vec2::new(r, r) * 2.0);
+                    grow(a.to + kurbo::Vec2::new(r, r) * 2.0);
+                }
+            }
+        }
+        if !(lo.x.is_finite() && lo.y.is_finite() && hi.x.is_finite() && hi.y.is_finite()) {
+            lo = reference.lo;
+            hi = reference.hi;
+        }
+        Window {
+            x0: lo.x.floor() as i64 - 2,
+            y0: lo.y.floor() as i64 - 2,
+            x1: hi.x.ceil() as i64 + 2,
+            y1: hi.y.ceil() as i64 + 2,
         }
     }
-    let (width, height) = (x1 - x0, y1 - y0);
-    let everywhere = || -> Vec<Pixel> {
+
+    /// The whole pixels inside `r`.
+    pub(super) fn inside(r: Rect) -> Window {
+        Window {
+            x0: r.x0.ceil() as i64,
+            y0: r.y0.ceil() as i64,
+            x1: r.x1.floor() as i64,
+            y1: r.y1.floor() as i64,
+        }
+    }
+
+    /// The pixels of both; `None` when they share none.
+    pub(super) fn within(self, other: Window) -> Option<Window> {
+        let w = Window {
+            x0: self.x0.max(other.x0),
+            y0: self.y0.max(other.y0),
+            x1: self.x1.min(other.x1),
+            y1: self.y1.min(other.y1),
+        };
+        (w.x0 < w.x1 && w.y0 < w.y1).then_some(w)
+    }
+
+    /// Whether every pixel of `self` is in `other`.
+    pub(super) fn is_in(self, other: Window) -> bool {
+        self.x0 >= other.x0 && self.y0 >= other.y0 && self.x1 <= other.x1 && self.y1 <= other.y1
+    }
+
+    /// Whether pixel `(x, y)` is in the window.
+    pub(super) fn contains(self, x: i64, y: i64) -> bool {
+        (self.x0..self.x1).contains(&x) && (self.y0..self.y1).contains(&y)
+    }
+
+    /// Every pixel of the window.
+    fn pixels(self) -> Vec<Pixel> {
         let mut all = Vec::new();
-        for y in y0..y1 {
-            for x in x0..x1 {
+        for y in self.y0..self.y1 {
+            for x in self.x0..self.x1 {
                 if let (Ok(px), Ok(py)) = (i32::try_from(x), i32::try_from(y)) {
                     all.push(Pixel::new(px, py));
                 }
             }
         }
         all
-    };
+    }
+}
+
+/// The pixels of `win` whose centre the path and `reference` wind round differently (see
+/// [`misplaced_pixels`]), as tiny-skia draws them into a mask that is exactly `win` (its
+/// edge clipper cuts every edge crossing the window's border there), for each way of
+/// drawing curves in `modes` (`true`: clipped). Every pixel of the window when tiny-skia
+/// cannot fill the path.
+pub(super) fn painted_in(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+    modes: &[bool],
+) -> Vec<Pixel> {
+    let (width, height) = (win.x1 - win.x0, win.y1 - win.y0);
     let size = u32::try_from(width)
         .ok()
         .zip(u32::try_from(height).ok())
         .and_then(|(w, h)| tiny_skia::IntSize::from_wh(w, h));
     let Some(size) = size else {
-        return everywhere();
+        return win.pixels();
     };
     let len = (width * height) as usize;
-    let curved = commands.iter().any(|c| !matches!(c, PathCommand::Line(_)));
-    let modes = if curved { clipping.modes() } else { &[false] };
     // Indices (row-major in the window) of the painted pixels, of both modes.
     let mut painted_at: Vec<usize> = Vec::new();
     for &clipped in modes {
-        let painted = difference_path(reference, start, commands, x0 as f64, y0 as f64, clipped)
-            .and_then(|path| {
-                let mut mask = tiny_skia::Mask::from_vec(zeroed(len), size)?;
-                mask.fill_path(
-                    &path,
-                    tiny_skia::FillRule::Winding,
-                    false,
-                    tiny_skia::Transform::identity(),
-                );
-                Some(mask.take())
-            });
+        let painted = difference_path(
+            reference,
+            start,
+            commands,
+            win.x0 as f64,
+            win.y0 as f64,
+            clipped,
+        )
+        .and_then(|path| {
+            let mut mask = tiny_skia::Mask::from_vec(zeroed(len), size)?;
+            mask.fill_path(
+                &path,
+                tiny_skia::FillRule::Winding,
+                false,
+                tiny_skia::Transform::identity(),
+            );
+            Some(mask.take())
+        });
         let Some(mut painted) = painted else {
-            return everywhere();
+            return win.pixels();
         };
         take_painted(&mut painted, &mut painted_at);
         recycle(painted);
@@ -228,7 +300,7 @@ pub(crate) fn misplaced_pixels(
     painted_at
         .into_iter()
         .filter_map(|at| {
-            let (x, y) = (x0 + (at % w) as i64, y0 + (at / w) as i64);
+            let (x, y) = (win.x0 + (at % w) as i64, win.y0 + (at / w) as i64);
             Some(Pixel::new(i32::try_from(x).ok()?, i32::try_from(y).ok()?))
         })
         .collect()

@@ -22,6 +22,7 @@ use std::collections::HashMap;
 use kurbo::{Point, Vec2};
 
 use super::path::ContourPath;
+use super::tiles::clear_of_tile_cuts;
 use crate::contour::Contour;
 use crate::curve::PathCommand;
 use crate::decompose::Piece;
@@ -33,7 +34,8 @@ use crate::recognize::Extremes;
 /// hundred bytes (the memo held 33 MB on 2000² noise, against 350 MB for the whole run).
 const MAX_SHAPES: usize = 1 << 16;
 
-/// Distance (pixels) from the pixmap's border within which a tiny contour is not memoized:
+/// Distance (pixels) from the pixmap's border (and from the lines where Chromium's tiles cut
+/// paths, see [`super::tiles`]) within which a tiny contour is not memoized:
 /// its drawing stays within 2 px of its pixels ([`super::joins::STRAY_MARGIN`]) and the
 /// render check looks 2 px farther, so beyond 5 px the border plays no part.
 const CANVAS_MARGIN: f64 = 6.0;
@@ -77,6 +79,22 @@ impl ShapeKey {
             if !inside {
                 return None;
             }
+        }
+        // Nor near the lines where Chromium's tiles cut paths.
+        let (mut lo, mut hi) = ((first.x, first.y), (first.x, first.y));
+        for p in &contour.points {
+            lo = (lo.0.min(p.x), lo.1.min(p.y));
+            hi = (hi.0.max(p.x), hi.1.max(p.y));
+        }
+        if !clear_of_tile_cuts(
+            i64::from(lo.0),
+            i64::from(lo.1),
+            i64::from(hi.0) + 1,
+            i64::from(hi.1) + 1,
+            canvas,
+            CANVAS_MARGIN as i64,
+        ) {
+            return None;
         }
         Some(ShapeKey {
             hole: contour.hole,

@@ -30,6 +30,7 @@ use super::builder::Builder;
 use super::render_check::{
     finely_flattened, misplaced_pixels, misplaced_when_moved, EdgeClipping, Reference,
 };
+use super::tiles::misplaced_in_tiles;
 use super::ROBUST_SHIFT;
 use crate::curve::PathCommand;
 use kurbo::{ParamCurve, ParamCurveNearest, Point, Vec2};
@@ -231,6 +232,7 @@ pub(crate) fn smooth_polygon(
         // Moved sideways by `ROBUST_SHIFT` (see there) first, as the contour check does.
         (!fine || misplaced_when_moved(&nothing, a, lp, ROBUST_SHIFT, clipping, canvas).is_empty())
             && misplaced_pixels(&nothing, a, lp, clipping, canvas).is_empty()
+            && misplaced_in_tiles(&nothing, a, lp, canvas).is_empty()
             && (!fine
                 || finely_flattened(a, lp).is_none_or(|fine| {
                     misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
