@@ -298,6 +298,12 @@ fn report(v: &Vectorized) -> Result<String, Error> {
         "fidelity: {} differing pixels ({} missing, {} extra; {:.3}% of {} foreground), IoU {:.5}\n",
         r.differing, r.missing, r.extra, pct, r.foreground, r.iou
     );
+    if let Some(t) = f.tiled {
+        text += &format!(
+            "fidelity in Chromium's 256-px tiles (the document opened at 1:1): {} differing pixels ({} missing, {} extra)\n",
+            t.differing, t.missing, t.extra
+        );
+    }
     if let Some(b) = f.band {
         text += &band_line(&b);
     }

@@ -22,7 +22,9 @@ use crate::estimate::work_estimate;
 use crate::export::json::{decomposition_json, JsonHeader};
 use crate::export::picture::{decomposition_picture, default_scale};
 use crate::export::svg::{svg_document_reporting, SvgOutput};
-use crate::fidelity::{band_check, compare, rasterize_svg, BandCheck, FidelityReport};
+use crate::fidelity::{
+    band_check, compare, rasterize_svg, rasterize_svg_in_tiles, BandCheck, FidelityReport,
+};
 use crate::output::png_bytes;
 
 /// What [`vectorize`] reads.
@@ -88,6 +90,10 @@ pub struct Fidelity {
     pub rendered: Mask,
     /// With [`Options::smooth`]: how far from the border the differing pixels are.
     pub band: Option<BandCheck>,
+    /// The comparison with the SVG as Chromium draws the document opened at 1:1, in
+    /// 256-px tiles that cut the path at their borders ([`rasterize_svg_in_tiles`]); `None`
+    /// when the document fits in one tile (it is then drawn as `rendered`).
+    pub tiled: Option<FidelityReport>,
 }
 
 /// Everything [`vectorize`] made.
@@ -294,8 +300,15 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
     let fidelity = match (&svg, options.fidelity) {
         (Some(svg), true) => {
             let rendered = rasterize_svg(&svg.svg, mask.width(), mask.height())?;
+            let tiled = if mask.width() > 256 || mask.height() > 256 {
+                let t = rasterize_svg_in_tiles(&svg.svg, mask.width(), mask.height())?;
+                Some(compare(&mask, &t))
+            } else {
+                None
+            };
             Some(Fidelity {
                 report: compare(&mask, &rendered),
+                tiled,
                 band: band.as_ref().map(|b| band_check(&mask, &rendered, b.nu())),
                 rendered,
             })
