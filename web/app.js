@@ -89,6 +89,12 @@ function show(a, ms) {
     $("beyond").textContent = `${a.beyond} (ν = ${a.smooth}, max ${a.max_distance.toFixed(3)} px)`;
     $("beyond").className = a.beyond === 0 ? "good" : "bad";
   }
+  const tiled = a.chromium_tiles === null || a.chromium_tiles === undefined;
+  $("tiles-figure").hidden = tiled;
+  if (!tiled) {
+    $("tiles").textContent = String(a.chromium_tiles);
+    $("tiles").className = a.chromium_tiles === 0 ? "good" : "bad";
+  }
   $("seams-figure").hidden = a.seams === null;
   if (a.seams !== null) {
     $("seams").textContent = String(a.seams);

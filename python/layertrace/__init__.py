@@ -56,6 +56,10 @@ class Result:
             ``colors``, ``missing`` is None and ``extra`` counts pixels painted outside
             every region (transparent in the input).
         iou: intersection over union of the two foregrounds (None with ``colors``).
+        chromium_tiles: for images larger than 256 pixels either way (without ``colors``),
+            the pixels that differ when the SVG is drawn as Chromium draws the document
+            opened at 1:1, in 256-px raster tiles that cut the path at their borders;
+            None otherwise (a smaller document is drawn as ``fidelity`` counts).
         colours: with ``colors`` and the fidelity check, one dict per colour, most pixels
             first (the drawing order is ``decomposition["regions"]``'s): ``colour`` (``"#rrggbb"``), ``pixels`` and ``differing``; else None.
         beyond, max_distance: with ``smooth`` and the fidelity check, the differing pixels
@@ -76,6 +80,7 @@ class Result:
 
     __slots__ = (
         "svg", "json", "decomposition", "pieces", "fidelity", "missing", "extra", "iou",
+        "chromium_tiles",
         "decomposition_png", "diff_png", "width", "height", "threshold", "contours",
         "commands", "colours", "seams", "beyond", "max_distance",
     )
@@ -101,6 +106,7 @@ class Result:
         self.missing: Optional[int] = made["missing"]
         self.extra: Optional[int] = made["extra"]
         self.iou: Optional[float] = made["iou"]
+        self.chromium_tiles: Optional[int] = made["chromium_tiles"]
         self.colours: Optional[List[Dict[str, Any]]] = made["colours"]
         self.seams: Optional[int] = made["seams"]
         self.beyond: Optional[int] = made["beyond"]

@@ -55,6 +55,8 @@ struct Made {
     commands: usize,
     /// Binary runs: differing, missing, extra, IoU.
     fidelity: Option<(u64, u64, u64, f64)>,
+    /// Binary runs of images larger than a tile: differing pixels in Chromium's tiles.
+    tiled: Option<u64>,
     /// Colour runs: differing pixels, painted outside the regions, seam pixels, per colour.
     colour_fidelity: Option<(u64, u64, u64, Vec<ColourMade>)>,
     /// Smooth runs: differing pixels farther than NU from the border, and the largest
@@ -186,6 +188,10 @@ fn work(input: Input<'_>, options: &Options) -> Result<Made, LtError> {
                 f.report.iou,
             )
         }),
+        tiled: out
+            .fidelity
+            .as_ref()
+            .and_then(|f| f.tiled.map(|t| t.differing)),
         colour_fidelity: colour_fidelity.map(|f| {
             let colours = f
                 .colours
@@ -320,6 +326,7 @@ fn vectorize<'py>(
         "missing",
         "extra",
         "iou",
+        "chromium_tiles",
         "seams",
         "colours",
         "beyond",
@@ -332,6 +339,9 @@ fn vectorize<'py>(
         d.set_item("missing", missing)?;
         d.set_item("extra", extra)?;
         d.set_item("iou", iou)?;
+    }
+    if let Some(t) = made.tiled {
+        d.set_item("chromium_tiles", t)?;
     }
     if let Some((beyond, max_distance)) = made.band {
         d.set_item("beyond", beyond)?;

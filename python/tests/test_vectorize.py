@@ -28,6 +28,8 @@ def test_path_matches_the_command_lines_figures():
     assert r.svg.startswith("<svg")
     assert (r.width, r.height) == (110, 163)
     assert r.fidelity == 0 and r.missing == 0 and r.extra == 0 and r.iou == 1.0
+    # Within one of Chromium's 256-px tiles: no tile count.
+    assert r.chromium_tiles is None
     # The same 27 pieces as `layertrace samples/glyph_g... --json` (conic, greedy).
     assert len(r.pieces) == 27
     assert r.contours == 3
@@ -182,3 +184,10 @@ def test_json_is_the_command_lines_format():
     assert json.loads(r.json) == r.decomposition
     total = sum(len(c["pieces"]) for c in r.decomposition["contours"])
     assert total == len(r.pieces)
+
+
+def test_large_images_are_exact_in_chromiums_tiles():
+    # A 300-px disc crosses the tile borders at 254 and 256.
+    r = layertrace.vectorize(disc_mask(size=300, radius=140.0))
+    assert r.fidelity == 0
+    assert r.chromium_tiles == 0

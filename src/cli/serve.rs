@@ -433,6 +433,7 @@ fn answer(out: &Vectorized, name: &str, seconds: f64) -> Result<String, Error> {
         "missing": report.map(|r| r.missing),
         "extra": report.map(|r| r.extra),
         "iou": report.map(|r| r.iou),
+        "chromium_tiles": fidelity.and_then(|f| f.tiled).map(|t| t.differing),
         "seconds": seconds,
         "svg": out.svg_text(),
         "json": out.json.as_deref().unwrap_or(""),
