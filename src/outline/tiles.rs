@@ -63,6 +63,10 @@ pub(crate) fn misplaced_in_tiles(
         return Vec::new();
     };
     let page = Window::inside(canvas);
+    if page.x1 - page.x0 <= TILE_SIZE && page.y1 - page.y0 <= TILE_SIZE {
+        // One tile, whose clip is the page's.
+        return Vec::new();
+    }
     let round = Window::round(reference, start, commands);
     let Some(win) = round.within(page) else {
         return Vec::new();
