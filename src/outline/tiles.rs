@@ -127,12 +127,13 @@ pub(crate) fn clear_of_tile_cuts(
         return true;
     };
     let page = Window::inside(canvas);
-    // Clip lines of one axis: 254 k (k ≥ 1) and 254 k + 256 (k ≥ 0), below `end`.
+    // Clip lines of one axis: 254 k and 254 k + 2 (k ≥ 1), below `end`.
     let clear = |lo: i64, hi: i64, origin: i64, end: i64| {
         let (lo, hi) = (lo - margin - origin, hi + margin - origin);
         let crosses = |offset: i64| {
-            // Some k with lo < 254 k + offset < hi and 0 < 254 k + offset < end.
-            let k = (lo - offset).div_euclid(TILE_STEP) + 1;
+            // Some k ≥ 1 with lo < 254 k + offset < hi and 254 k + offset < end (the first
+            // line above lo: the others are farther).
+            let k = ((lo - offset).div_euclid(TILE_STEP) + 1).max(1);
             let line = k * TILE_STEP + offset;
             line < hi && line > 0 && line < end
         };
@@ -144,6 +145,43 @@ pub(crate) fn clear_of_tile_cuts(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// `clear_of_tile_cuts` against every clip line listed one by one.
+        #[test]
+        fn clear_means_no_clip_line_within_the_margin(
+            x0 in -20i64..1200, w in 1i64..40, y0 in -20i64..1200, h in 1i64..40,
+            ox in 0i64..4, oy in 0i64..4, cw in 200i64..1100, ch in 200i64..1100,
+            margin in 0i64..7,
+        ) {
+            let canvas = Rect::new(ox as f64, oy as f64, (ox + cw) as f64, (oy + ch) as f64);
+            // Lines of one axis: where a tile's clip starts or ends inside the page.
+            let lines = |end: i64| -> Vec<i64> {
+                let mut v = Vec::new();
+                let mut k = 0;
+                while k * TILE_STEP < end {
+                    for l in [k * TILE_STEP, k * TILE_STEP + TILE_SIZE] {
+                        if l > 0 && l < end {
+                            v.push(l);
+                        }
+                    }
+                    k += 1;
+                }
+                v
+            };
+            let near = |lo: i64, hi: i64, origin: i64, end: i64| {
+                lines(end)
+                    .iter()
+                    .any(|&l| lo - margin - origin < l && l < hi + margin - origin)
+            };
+            let expected = !near(x0, x0 + w, ox, cw) && !near(y0, y0 + h, oy, ch);
+            prop_assert_eq!(
+                clear_of_tile_cuts(x0, y0, x0 + w, y0 + h, Some(canvas), margin),
+                expected
+            );
+        }
+    }
 
     #[test]
     fn every_pixel_is_shown_by_one_tile() {
