@@ -142,11 +142,7 @@ pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
 /// ```
 pub fn rasterize_svg_in_tiles(svg: &str, width: u32, height: u32) -> Result<Mask, Error> {
     use crate::outline::tiles::tiles;
-    let options = usvg::Options {
-        shape_rendering: usvg::ShapeRendering::CrispEdges,
-        ..usvg::Options::default()
-    };
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|source| Error::SvgParse { source })?;
+    let tree = parse(svg, usvg::ShapeRendering::CrispEdges)?;
     if width == 0 || height == 0 {
         return Err(Error::Raster { width, height });
     }
@@ -182,6 +178,15 @@ fn render(svg: &str, width: u32, height: u32) -> Result<tiny_skia::Pixmap, Error
     render_with(svg, width, height, usvg::ShapeRendering::CrispEdges)
 }
 
+/// The usvg tree of `svg` with `shape_rendering` as the default shape rendering.
+fn parse(svg: &str, shape_rendering: usvg::ShapeRendering) -> Result<usvg::Tree, Error> {
+    let options = usvg::Options {
+        shape_rendering,
+        ..usvg::Options::default()
+    };
+    usvg::Tree::from_str(svg, &options).map_err(|source| Error::SvgParse { source })
+}
+
 /// The pixmap resvg paints for `svg` at `width` × `height` with `shape_rendering` as the
 /// default shape rendering.
 fn render_with(
@@ -190,11 +195,7 @@ fn render_with(
     height: u32,
     shape_rendering: usvg::ShapeRendering,
 ) -> Result<tiny_skia::Pixmap, Error> {
-    let options = usvg::Options {
-        shape_rendering,
-        ..usvg::Options::default()
-    };
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|source| Error::SvgParse { source })?;
+    let tree = parse(svg, shape_rendering)?;
     let mut pixmap =
         tiny_skia::Pixmap::new(width, height).ok_or(Error::Raster { width, height })?;
     resvg::render(
