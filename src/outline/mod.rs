@@ -251,7 +251,8 @@ fn exact_path(
     let mut cracked = vec![false; stretches.len()];
     let mut keep_bridge = vec![false; stretches.len()];
     let mut memo = Memo::default();
-    let mut reference: Option<Reference> = None;
+    // The contour's crack polygon, and the coarse stand-in filled in its place (see below).
+    let mut references: Option<(Reference, Option<Reference>)> = None;
     for _ in 0..MAX_ROUNDS {
         let built = build(
             points,
@@ -277,26 +278,25 @@ fn exact_path(
             if stretches.iter().all(|s| s.drawing == Drawing::Cracks) && built.failed.is_empty() {
                 return finish(path, &stretches, fallbacks);
             }
-            let reference = reference.get_or_insert_with(|| {
+            let (cracks, coarse) = references.get_or_insert_with(|| {
                 let c = cracks_path(points);
                 let cracks = Reference::new(c.start, &c.commands);
                 // The coarse stand-in, filled by tiny-skia exactly like the cracks (see
                 // `coarse`), with far fewer edges to set up in every fill.
                 let coarse = (c.commands.len() >= MIN_COARSE_CRACKS)
                     .then(|| coarse_cracks(c.start, &c.commands))
-                    .flatten();
-                match coarse {
-                    Some((start, coarse)) => {
+                    .flatten()
+                    .map(|(start, coarse)| {
                         debug_assert!(
                             misplaced_pixels(&cracks, start, &coarse, EdgeClipping::Never, None)
                                 .is_empty(),
                             "the coarse crack polygon fills differently"
                         );
                         Reference::new(start, &coarse)
-                    }
-                    None => cracks,
-                }
+                    });
+                (cracks, coarse)
             });
+            let reference = coarse.as_ref().unwrap_or(cracks);
             // Unknown clipping draws curves both ways; the second way is only tried once
             // the first draws every pixel right (what it finds then is remedied in the
             // next round): one fill per round instead of two.
@@ -336,8 +336,10 @@ fn exact_path(
                 );
             }
             if wrong.is_empty() {
-                // Exact in Chromium's tiles too, where they cut the path (see `tiles`).
-                wrong = misplaced_in_tiles(reference, path.start, &path.commands, opts.canvas);
+                // Exact in Chromium's tiles too, where they cut the path (see `tiles`);
+                // against the cracks themselves, which a cut at a whole pixel leaves as they
+                // are (the coarse stand-in's slanted edges would be tilted too).
+                wrong = misplaced_in_tiles(cracks, path.start, &path.commands, opts.canvas);
             }
             if wrong.is_empty() {
                 // Exact in tiny-skia; also with the true curves (other renderers).
