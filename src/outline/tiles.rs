@@ -3,7 +3,8 @@
 //! Chromium rasterizes a page in tiles of 256 × 256 pixels that overlap their neighbours by
 //! two pixels (one texel of border on each side), so a new tile starts every 254 pixels.
 //! Tile `k` of a row (or column) is drawn with the clip `[254 k, 254 k + 256)`, within the
-//! document, and shows only its inner pixels `[254 k + 1, 254 k + 255)` (tile 0 from 0).
+//! document, and shows only its inner pixels `[254 k + 1, 254 k + 255)` (the first from 0,
+//! the last to the document's end).
 //! Skia's edge clipper cuts every edge that crosses the clip where it crosses it, the new
 //! end rounded to 1/64 px, which tilts what is left inside: the part of a segment between a
 //! vertex and the cut is not the segment, and a curve cut there is subdivided anew.
@@ -15,7 +16,10 @@
 //! at 256 (2393, 254) or at 1526 (1886, 1517), and tiny-skia reproduces such a tile when
 //! the path is drawn into a mask that is exactly the tile's clip. Where a page puts a
 //! document that is not the page itself is not known; [`super::ROBUST_SHIFT`] stands in
-//! for those cuts.
+//! for those cuts. Chromium's cc sources (read, not measured here) choose other tile sizes for small or narrow pages (one
+//! tile below 512 px both ways; 512-px-tall tiles on pages under 256 px wide): those were
+//! not measured, and this model checks 256-px tiles on every page larger than one; the
+//! move covers the rest.
 
 use super::render_check::{painted_in, Reference, Window};
 use crate::curve::PathCommand;
@@ -34,13 +38,20 @@ pub(crate) fn tiles(
     hi: i64,
     end: i64,
 ) -> impl Iterator<Item = (i64, (i64, i64), (i64, i64))> {
-    let tile_of = |r: i64| (r - 1).div_euclid(TILE_STEP).max(0);
+    // As Chromium's `TilingData`: the last tile also shows its far border pixel, so a page
+    // of 254 k + 2 pixels has k tiles, not a last one of two pixels.
+    let count = (1 + (end - 3).div_euclid(TILE_STEP)).max(1);
+    let tile_of = |r: i64| (r - 1).div_euclid(TILE_STEP).clamp(0, count - 1);
     let (first, last) = (tile_of(lo.max(0)), tile_of((hi - 1).min(end - 1)));
     (first..=last).map(move |k| {
         let clip = (k * TILE_STEP, (k * TILE_STEP + TILE_SIZE).min(end));
         let shown = (
             if k == 0 { 0 } else { k * TILE_STEP + 1 },
-            (k * TILE_STEP + TILE_SIZE - 1).min(end),
+            if k == count - 1 {
+                clip.1
+            } else {
+                k * TILE_STEP + TILE_SIZE - 1
+            },
         );
         (k, clip, shown)
     })
@@ -52,7 +63,8 @@ pub(crate) fn tiles(
 /// drawn by tiny-skia into each tile's clip that cuts the path, counted on the pixels that
 /// tile shows. Curves are drawn clipped (Skia clips every edge of a path that leaves the
 /// tile). Tiles whose clip holds the whole path are left out: they draw it as the clipped
-/// way of [`super::EdgeClipping::Unknown`] does. Empty without a canvas.
+/// way of [`super::EdgeClipping::Unknown`] (or `Always`) does, which the caller checks.
+/// Empty without a canvas.
 pub(crate) fn misplaced_in_tiles(
     reference: &Reference,
     start: Point,
@@ -135,7 +147,8 @@ pub(crate) fn clear_of_tile_cuts(
             // line above lo: the others are farther).
             let k = ((lo - offset).div_euclid(TILE_STEP) + 1).max(1);
             let line = k * TILE_STEP + offset;
-            line < hi && line > 0 && line < end
+            // Tile k exists when its clip starts 3 or more pixels before the end.
+            line < hi && k * TILE_STEP + 2 < end
         };
         !crosses(0) && !crosses(TILE_SIZE - TILE_STEP)
     };
@@ -159,14 +172,13 @@ mod tests {
             // Lines of one axis: where a tile's clip starts or ends inside the page.
             let lines = |end: i64| -> Vec<i64> {
                 let mut v = Vec::new();
-                let mut k = 0;
-                while k * TILE_STEP < end {
-                    for l in [k * TILE_STEP, k * TILE_STEP + TILE_SIZE] {
+                // The starts and ends of the clips of the tiles `tiles` lists, inside.
+                for (_, (c0, c1), _) in tiles(0, end, end) {
+                    for l in [c0, c1] {
                         if l > 0 && l < end {
                             v.push(l);
                         }
                     }
-                    k += 1;
                 }
                 v
             };
@@ -180,6 +192,24 @@ mod tests {
                 clear_of_tile_cuts(x0, y0, x0 + w, y0 + h, Some(canvas), margin),
                 expected
             );
+        }
+    }
+
+    /// The tiles of Chromium's `TilingData` (256-px tiles, one border texel): count
+    /// `max(1, 1 + (end − 3) / 254)`, tile k's bounds `[254 k + 1, 254 k + 255)` with the
+    /// first from 0 and the last to the end, its clip one pixel wider each side.
+    #[test]
+    fn tiles_are_chromiums() {
+        for end in 1..3000i64 {
+            let count = (1 + (end - 3).div_euclid(254)).max(1);
+            let got: Vec<_> = tiles(0, end, end).collect();
+            assert_eq!(got.len() as i64, count, "{end}");
+            for (k, clip, shown) in got {
+                let lo = if k == 0 { 0 } else { 254 * k + 1 };
+                let hi = if k == count - 1 { end } else { 254 * k + 255 };
+                assert_eq!(shown, (lo, hi), "{end} {k}");
+                assert_eq!(clip, ((lo - 1).max(0), (hi + 1).min(end)), "{end} {k}");
+            }
         }
     }
 
