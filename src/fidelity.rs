@@ -115,11 +115,12 @@ pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
 
 /// Renders `svg` onto a `width` × `height` mask as Chromium draws the document opened at 1:1
 /// with `shape-rendering="crispEdges"` (software raster, as headless Chromium does): tile by
-/// tile, each of 256 × 256 pixels overlapping its neighbours by two, drawn by resvg into a
-/// pixmap that is exactly the tile, so that tiny-skia's edge clipper cuts the path at the
-/// tile's border as Skia's does, and keeping the pixels the tile shows (see
-/// `outline::tiles`). Same errors as [`rasterize_svg`]; documents of at most 256 pixels
-/// both ways come out as [`rasterize_svg`] draws them.
+/// tile, each overlapping its neighbours by two pixels, drawn by resvg into a pixmap that is
+/// exactly the tile, so that tiny-skia's edge clipper cuts the path at the tile's border as
+/// Skia's does, and keeping the pixels the tile shows (see `outline::tiles`). Tiles are
+/// chosen as Chromium chooses them: 256 × 256 px; 512 px tall on pages under 256 px wide,
+/// 512 px wide on pages under 256 px tall. Same errors as [`rasterize_svg`]; documents under
+/// 512 pixels both ways are one tile and come out as [`rasterize_svg`] draws them.
 ///
 /// ```
 /// use layertrace::{compare, rasterize_svg, rasterize_svg_in_tiles};
@@ -132,24 +133,25 @@ pub fn band_check(expected: &Mask, rendered: &Mask, nu: f64) -> BandCheck {
 /// let d = compare(&whole, &tiled);
 /// assert!(d.differing > 0 && d.differing < 10);
 /// // Within one tile, nothing is cut.
-/// let small = r#"<svg xmlns="http://www.w3.org/2000/svg" width="200" height="100" viewBox="0 0 200 100">
-///   <path d="M3 3L197 10L100 97Z"/></svg>"#;
+/// let small = r#"<svg xmlns="http://www.w3.org/2000/svg" width="500" height="400" viewBox="0 0 500 400">
+///   <path d="M3 3L497 10L100 397Z"/></svg>"#;
 /// assert_eq!(
-///     rasterize_svg_in_tiles(small, 200, 100)?,
-///     rasterize_svg(small, 200, 100)?
+///     rasterize_svg_in_tiles(small, 500, 400)?,
+///     rasterize_svg(small, 500, 400)?
 /// );
 /// # Ok::<(), layertrace::Error>(())
 /// ```
 pub fn rasterize_svg_in_tiles(svg: &str, width: u32, height: u32) -> Result<Mask, Error> {
-    use crate::outline::tiles::tiles;
+    use crate::outline::tiles::{tiles, TileSize};
     let tree = parse(svg, usvg::ShapeRendering::CrispEdges)?;
     if width == 0 || height == 0 {
         return Err(Error::Raster { width, height });
     }
     let mut mask = Mask::new(width, height);
     let (w, h) = (i64::from(width), i64::from(height));
-    for (_, (cy0, cy1), (sy0, sy1)) in tiles(0, h, h) {
-        for (_, (cx0, cx1), (sx0, sx1)) in tiles(0, w, w) {
+    let size = TileSize::of_page(w, h);
+    for (_, (cy0, cy1), (sy0, sy1)) in tiles(0, h, h, size.height) {
+        for (_, (cx0, cx1), (sx0, sx1)) in tiles(0, w, w, size.width) {
             let (tw, th) = ((cx1 - cx0) as u32, (cy1 - cy0) as u32);
             let mut pixmap = tiny_skia::Pixmap::new(tw, th).ok_or(Error::Raster {
                 width: tw,

@@ -114,7 +114,7 @@ fn page_assets_and_a_conversion() {
     assert_eq!(status, 200, "{body}");
     let v: serde_json::Value = serde_json::from_str(&body).unwrap();
     assert_eq!(v["differing"], 0);
-    // Within one of Chromium's 256-px tiles: no tile count.
+    // Chromium draws pages under 512 px both ways as one tile: no tile count.
     assert!(v["chromium_tiles"].is_null());
     assert_eq!(v["pieces"], 27);
     assert_eq!(

@@ -56,10 +56,11 @@ class Result:
             ``colors``, ``missing`` is None and ``extra`` counts pixels painted outside
             every region (transparent in the input).
         iou: intersection over union of the two foregrounds (None with ``colors``).
-        chromium_tiles: for images larger than 256 pixels either way (without ``colors``),
-            the pixels that differ when the SVG is drawn as Chromium draws the document
-            opened at 1:1, in 256-px raster tiles that cut the path at their borders;
-            None otherwise (a smaller document is drawn as ``fidelity`` counts).
+        chromium_tiles: for images Chromium draws in more than one raster tile (512 pixels
+            or more either way; without ``colors``), the pixels that differ when the SVG is
+            drawn as Chromium draws the document opened at 1:1, tile by tile, the tiles
+            cutting the path at their borders; None otherwise (a page under 512 pixels both
+            ways is one tile, drawn as ``fidelity`` counts).
         colours: with ``colors`` and the fidelity check, one dict per colour, most pixels
             first (the drawing order is ``decomposition["regions"]``'s): ``colour`` (``"#rrggbb"``), ``pixels`` and ``differing``; else None.
         beyond, max_distance: with ``smooth`` and the fidelity check, the differing pixels

@@ -55,7 +55,7 @@ struct Made {
     commands: usize,
     /// Binary runs: differing, missing, extra, IoU.
     fidelity: Option<(u64, u64, u64, f64)>,
-    /// Binary runs of images larger than a tile: differing pixels in Chromium's tiles.
+    /// Binary runs of images Chromium draws in several tiles: differing pixels there.
     tiled: Option<u64>,
     /// Colour runs: differing pixels, painted outside the regions, seam pixels, per colour.
     colour_fidelity: Option<(u64, u64, u64, Vec<ColourMade>)>,

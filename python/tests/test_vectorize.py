@@ -28,7 +28,7 @@ def test_path_matches_the_command_lines_figures():
     assert r.svg.startswith("<svg")
     assert (r.width, r.height) == (110, 163)
     assert r.fidelity == 0 and r.missing == 0 and r.extra == 0 and r.iou == 1.0
-    # Within one of Chromium's 256-px tiles: no tile count.
+    # Chromium draws pages under 512 px both ways as one tile: no tile count.
     assert r.chromium_tiles is None
     # The same 27 pieces as `layertrace samples/glyph_g... --json` (conic, greedy).
     assert len(r.pieces) == 27
@@ -187,7 +187,8 @@ def test_json_is_the_command_lines_format():
 
 
 def test_large_images_are_exact_in_chromiums_tiles():
-    # A 300-px disc crosses the tile borders at 254 and 256.
-    r = layertrace.vectorize(disc_mask(size=300, radius=140.0))
+    # A 600-px page is drawn in 256-px tiles: the disc crosses their borders at 254, 256,
+    # 508 and 510. (A page under 512 px both ways is one tile.)
+    r = layertrace.vectorize(disc_mask(size=600, radius=280.0))
     assert r.fidelity == 0
     assert r.chromium_tiles == 0

@@ -300,7 +300,7 @@ fn report(v: &Vectorized) -> Result<String, Error> {
     );
     if let Some(t) = f.tiled {
         text += &format!(
-            "fidelity in Chromium's 256-px tiles (the document opened at 1:1): {} differing pixels ({} missing, {} extra)\n",
+            "fidelity in Chromium's raster tiles (the document opened at 1:1): {} differing pixels ({} missing, {} extra)\n",
             t.differing, t.missing, t.extra
         );
     }

@@ -132,7 +132,7 @@ const MIN_COARSE_CRACKS: usize = 256;
 const MAX_ROUNDS: usize = 40;
 
 /// Sideways move (px) under which a drawing must stay exact: Chromium cuts paths at the
-/// borders of its 256-px raster tiles and rounds the new ends to 1/64 px, which moves an
+/// borders of its raster tiles and rounds the new ends to 1/64 px, which moves an
 /// edge's crossing of a row of pixel centres by up to about that much. Where the document
 /// is the page, the cuts themselves are checked ([`tiles`]); where a page puts a document
 /// embedded in it is unknown, hence this move as well.

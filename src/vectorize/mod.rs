@@ -91,8 +91,9 @@ pub struct Fidelity {
     /// With [`Options::smooth`]: how far from the border the differing pixels are.
     pub band: Option<BandCheck>,
     /// The comparison with the SVG as Chromium draws the document opened at 1:1, in
-    /// 256-px tiles that cut the path at their borders ([`rasterize_svg_in_tiles`]); `None`
-    /// when the document fits in one tile (it is then drawn as `rendered`).
+    /// raster tiles that cut the path at their borders ([`rasterize_svg_in_tiles`]); `None`
+    /// when Chromium draws the document as one tile (under 512 px both ways: it is then
+    /// drawn as `rendered`).
     pub tiled: Option<FidelityReport>,
 }
 
@@ -300,7 +301,8 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
     let fidelity = match (&svg, options.fidelity) {
         (Some(svg), true) => {
             let rendered = rasterize_svg(&svg.svg, mask.width(), mask.height())?;
-            let tiled = if mask.width() > 256 || mask.height() > 256 {
+            let (w, h) = (i64::from(mask.width()), i64::from(mask.height()));
+            let tiled = if !crate::outline::tiles::one_tile(w, h) {
                 let t = rasterize_svg_in_tiles(&svg.svg, mask.width(), mask.height())?;
                 Some(compare(&mask, &t))
             } else {

@@ -141,6 +141,10 @@ pub struct Options {
     pub alpha: bool,
     /// Render the SVG back with resvg and compare it with the mask.
     pub fidelity: bool,
+    /// With `fidelity`, also draw the SVG as Chromium draws the document, tile by tile
+    /// ([`Fidelity::tiled`](crate::Fidelity::tiled)). Default `true`; a caller that only
+    /// wants the plain rendering (`--diff` without `--report`) saves those renders.
+    pub tile_fidelity: bool,
     /// Write the decomposition's JSON text.
     pub json: bool,
     /// Draw the decomposition picture at this enlargement (`Some(None)`: about 800 pixels
@@ -180,6 +184,7 @@ impl Default for Options {
             layout: Layout::Stack,
             alpha: false,
             fidelity: false,
+            tile_fidelity: true,
             json: false,
             picture: None,
             max_pixels: 400_000_000,
@@ -206,6 +211,7 @@ impl fmt::Debug for Options {
             .field("layout", &self.layout)
             .field("alpha", &self.alpha)
             .field("fidelity", &self.fidelity)
+            .field("tile_fidelity", &self.tile_fidelity)
             .field("json", &self.json)
             .field("picture", &self.picture)
             .field("max_pixels", &self.max_pixels)
@@ -295,6 +301,13 @@ impl Options {
     /// Render the SVG back and compare it with the mask.
     pub fn fidelity(mut self, fidelity: bool) -> Options {
         self.fidelity = fidelity;
+        self
+    }
+
+    /// With the fidelity check, also draw the SVG in Chromium's tiles (see
+    /// [`Options::tile_fidelity`]).
+    pub fn tile_fidelity(mut self, tile_fidelity: bool) -> Options {
+        self.tile_fidelity = tile_fidelity;
         self
     }
 
