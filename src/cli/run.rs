@@ -114,6 +114,8 @@ pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPoo
             Compat::Default
         })
         .fidelity(args.report || outputs.diff.is_some())
+        // The tile renders are only reported.
+        .tile_fidelity(args.report)
         .json(outputs.json.is_some());
     o.threshold = args.threshold;
     o.smooth = args.smooth;

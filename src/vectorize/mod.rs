@@ -93,7 +93,7 @@ pub struct Fidelity {
     /// The comparison with the SVG as Chromium draws the document opened at 1:1, in
     /// raster tiles that cut the path at their borders ([`rasterize_svg_in_tiles`]); `None`
     /// when Chromium draws the document as one tile (under 512 px both ways: it is then
-    /// drawn as `rendered`).
+    /// drawn as `rendered`), or when [`Options::tile_fidelity`] is off.
     pub tiled: Option<FidelityReport>,
 }
 
@@ -302,7 +302,7 @@ fn run(source: Source<'_>, options: &Options) -> Result<Vectorized, Error> {
         (Some(svg), true) => {
             let rendered = rasterize_svg(&svg.svg, mask.width(), mask.height())?;
             let (w, h) = (i64::from(mask.width()), i64::from(mask.height()));
-            let tiled = if !crate::outline::tiles::one_tile(w, h) {
+            let tiled = if options.tile_fidelity && !crate::outline::tiles::one_tile(w, h) {
                 let t = rasterize_svg_in_tiles(&svg.svg, mask.width(), mask.height())?;
                 Some(compare(&mask, &t))
             } else {
