@@ -118,10 +118,14 @@ impl Reference {
 /// pixel centre. So the path and the reference *reversed*, filled together, wind
 /// `w_path − w_reference` round every centre, and the pixels painted are exactly those where
 /// the two differ. The mask covers both with two pixels to spare (the scan converter keeps
-/// clipping off only when the conservatively rounded bounds are inside the mask); tiny-skia's
-/// results do not change under a translation by whole pixels (all of its arithmetic is on
-/// differences and on 26.6 fixed point). Points are on the 1/64 grid
-/// ([`super::builder`]), exact in `f32`.
+/// clipping off only when the conservatively rounded bounds are inside the mask). For lines
+/// tiny-skia's results do not change under a translation by whole pixels (their arithmetic
+/// is on differences and on 26.6 fixed point); a quadratic or cubic is first cut at its y
+/// extrema in `f32`, whose rounding depends on the origin, so its pixels may differ by a
+/// 1/64-px rounding between the window and the document (measured: 224 of 200 000 random
+/// cubic loops on a 3000-px page; see BENCHMARKS.md, *Tile sizes*). The
+/// check with the path moved by [`super::ROBUST_SHIFT`] covers such rounding in practice.
+/// Points are on the 1/64 grid ([`super::builder`]), exact in `f32`.
 ///
 /// A path that cannot be filled (not finite, too large for tiny-skia's fixed point) is wrong
 /// at every pixel of the window.

@@ -8,7 +8,9 @@
 //! *checks* depends on nothing else: the pieces' outliers come from consecutive points, the
 //! render check compares with the contour's own crack polygon in a window moved by whole
 //! pixels, and tiny-skia's results do not change under such a move (see
-//! [`super::render_check`]). The drawing is made at the shape's first contour (in document
+//! [`super::render_check`]: exactly so for lines; for a curve, up to the `f32` rounding of
+//! its cuts at y extrema, which the check with the path moved by 1/64 px covers in
+//! practice). The drawing is made at the shape's first contour (in document
 //! order, whatever the number of threads) and moved by whole pixels to the others; every
 //! point stays on the `2^-grid` grid, where the move is exact in `f64` and in tiny-skia's
 //! fixed point, so each copy is exact in tiny-skia where it lands. (A drawing made afresh
