@@ -93,10 +93,11 @@ fn the_scan_at_one_pixel() {
         .threshold(Threshold::ADAPTIVE)
         .turdsize(4);
     let (exact, smooth, _) = check(&scan, 1.0, options);
-    // Measured: 16 833 commands smooth, 28 190 exact (60%); the ragged edges of the scan's
-    // letters are what smoothing removes.
+    // Measured: 17 069 commands smooth, 23 731 exact (72%; 60% before the exact drawings
+    // merged their lines, 28 190 exact); the ragged edges of the scan's letters are what
+    // smoothing removes.
     assert!(
-        smooth * 10 < exact * 7,
+        smooth * 4 < exact * 3,
         "{smooth} smooth commands, {exact} exact"
     );
 }

@@ -40,6 +40,7 @@ mod corners;
 mod cracks;
 mod cut;
 mod joins;
+mod merge;
 mod nearest;
 mod partition;
 mod path;
@@ -69,6 +70,7 @@ use coarse::coarse_cracks;
 use corners::cut_staircase_corners;
 use cracks::{crack_polyline, pieces_valid};
 use joins::{build, Memo};
+use merge::merge_lines;
 use nearest::{nearest_points, points_near};
 use render_check::{finely_flattened, misplaced_pixels, misplaced_when_moved, Reference};
 use smooth::smooth_polygon;
@@ -179,15 +181,18 @@ pub fn contour_path(
     opts: &OutlineOptions,
 ) -> ContourPath {
     let mut path = exact_path(contour, pieces, basis, opts);
-    if opts.square_corners {
-        return path;
-    }
     // Where one-pixel features leave a staircase, its corners are cut (no pixel changes).
-    if let Some((start, commands)) =
-        cut_staircase_corners(path.start, &path.commands, opts.grid.min(MAX_GRID))
-    {
-        path.start = start;
-        path.commands = commands;
+    if !opts.square_corners {
+        if let Some((start, commands)) =
+            cut_staircase_corners(path.start, &path.commands, opts.grid.min(MAX_GRID))
+        {
+            path.start = start;
+            path.commands = commands;
+        }
+    }
+    // Then vertices between lines that change no pixel go (the cut corners' too).
+    if let Some(merged) = merge_lines(path.start, &path.commands, opts.canvas) {
+        path.commands = merged;
     }
     path
 }
