@@ -15,6 +15,7 @@ use crate::decompose::Decomposition;
 use crate::export::svg::{
     empty_output, outline_options, path_data, xml_escape, SvgOptions, SvgOutput,
 };
+use crate::outline::OutlineOptions;
 
 /// One layer of [`layers_document`]: its fill and its borders.
 #[derive(Clone, Copy, Debug)]
@@ -56,7 +57,11 @@ pub fn layers_document(
     margin: u32,
     opts: &SvgOptions,
 ) -> SvgOutput {
-    let outline = outline_options(opts, width, height, margin);
+    // The stack's anti-aliased seams rely on each colour's edges as drawn: no merged lines.
+    let outline = OutlineOptions {
+        merge_lines: false,
+        ..outline_options(opts, width, height, margin)
+    };
     let mut svg = String::new();
     let _ = writeln!(
         svg,

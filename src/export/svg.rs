@@ -374,6 +374,7 @@ pub(crate) fn outline_options(
             m + f64::from(height),
         )),
         square_corners: opts.square_corners,
+        merge_lines: true,
     }
 }
 

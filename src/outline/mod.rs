@@ -109,6 +109,10 @@ pub struct OutlineOptions {
     /// Keep the square corners of one-pixel features (pixel art): the corners inside pixel
     /// staircases are not cut (see [`contour_path`]). Default `false`.
     pub square_corners: bool,
+    /// Drop the vertices between lines that change no pixel (see [`contour_path`]). Default
+    /// `true`; colour stacks keep them: a merged edge draws the same pixel centres in
+    /// crispEdges but not the same anti-aliased coverage, which the stack's overlaps rely on.
+    pub merge_lines: bool,
 }
 
 impl Default for OutlineOptions {
@@ -120,6 +124,7 @@ impl Default for OutlineOptions {
             clipping: EdgeClipping::Unknown,
             canvas: None,
             square_corners: false,
+            merge_lines: true,
         }
     }
 }
@@ -191,8 +196,10 @@ pub fn contour_path(
         }
     }
     // Then vertices between lines that change no pixel go (the cut corners' too).
-    if let Some(merged) = merge_lines(path.start, &path.commands, opts.canvas) {
-        path.commands = merged;
+    if opts.merge_lines {
+        if let Some(merged) = merge_lines(path.start, &path.commands, opts.canvas) {
+            path.commands = merged;
+        }
     }
     path
 }

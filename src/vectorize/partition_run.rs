@@ -39,6 +39,12 @@ pub(super) fn run(
             crate::export::svg::outline_options(svg, image.width(), image.height(), MARGIN as u32)
         })
         .unwrap_or_default();
+    // Borders are cut out of the regions' paths at the corners where regions meet: those
+    // vertices must stay, so no lines are merged.
+    let outline = crate::outline::OutlineOptions {
+        merge_lines: false,
+        ..outline
+    };
     let decompositions: Vec<&Decomposition> = layers.iter().map(|l| &l.decomposition).collect();
     let part = super::partition::partition(image, &decompositions, MARGIN, &outline)?;
     let (w, h) = (image.width(), image.height());
