@@ -110,8 +110,9 @@ pub struct OutlineOptions {
     /// staircases are not cut (see [`contour_path`]). Default `false`.
     pub square_corners: bool,
     /// Drop the vertices between lines that change no pixel (see [`contour_path`]). Default
-    /// `true`; colour stacks keep them: a merged edge draws the same pixel centres in
-    /// crispEdges but not the same anti-aliased coverage, which the stack's overlaps rely on.
+    /// `true`; the colour layouts keep them: a merged edge draws the same pixel centres in
+    /// crispEdges but not the same anti-aliased coverage, which the stack's overlaps rely
+    /// on, and the partition cuts shared borders at vertices that must stay.
     pub merge_lines: bool,
 }
 
