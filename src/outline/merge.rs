@@ -13,9 +13,7 @@
 //! ([`super::tiles`]). Lines only: they are drawn the same at any origin (see
 //! [`super::render_check`]), curves are not.
 
-use super::render_check::{misplaced_pixels, misplaced_when_moved, EdgeClipping, Reference};
-use super::tiles::misplaced_in_tiles;
-use super::ROBUST_SHIFT;
+use super::render_check::{loop_paints_nothing, EdgeClipping};
 use crate::curve::PathCommand;
 use kurbo::Point;
 
@@ -73,19 +71,7 @@ fn merge_pass(
         lp.push(PathCommand::Line(w));
         lp.extend(dropped.iter().rev().map(|&p| PathCommand::Line(p)));
         lp.push(PathCommand::Line(anchor));
-        // The empty reference at the anchor: the window is the loop's.
-        let nothing = Reference::new(anchor, &[]);
-        misplaced_when_moved(
-            &nothing,
-            anchor,
-            &lp,
-            ROBUST_SHIFT,
-            EdgeClipping::Never,
-            canvas,
-        )
-        .is_empty()
-            && misplaced_pixels(&nothing, anchor, &lp, EdgeClipping::Never, canvas).is_empty()
-            && misplaced_in_tiles(&nothing, anchor, &lp, canvas).is_empty()
+        loop_paints_nothing(anchor, &lp, EdgeClipping::Never, canvas, true)
     };
     let mut out: Vec<PathCommand> = Vec::with_capacity(commands.len());
     let mut out_fresh: Vec<bool> = Vec::with_capacity(commands.len());
@@ -134,6 +120,8 @@ fn merge_pass(
 
 #[cfg(test)]
 mod tests {
+    use super::super::render_check::{misplaced_pixels, Reference};
+    use super::super::ROBUST_SHIFT;
     use super::*;
     use proptest::prelude::*;
 

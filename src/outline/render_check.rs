@@ -396,6 +396,33 @@ fn difference_path(
     pb.finish()
 }
 
+/// Whether the closed loop `M anchor lp Z` paints no pixel centre: filled by tiny-skia alone,
+/// in a window of its own and in Chromium's tiles ([`super::tiles`]); when `robust`, also
+/// moved by [`super::ROBUST_SHIFT`] sideways (first: where the plain fill is wrong the moved
+/// one mostly is too) and with its curves finely flattened ([`finely_flattened`]). A change
+/// to a path whose loop (the new commands, then the old ones backwards) paints nothing
+/// changes no pixel: tiny-skia and Skia sum each edge's crossings by itself, and a command
+/// drawn both ways cancels.
+pub(crate) fn loop_paints_nothing(
+    anchor: Point,
+    lp: &[PathCommand],
+    clipping: EdgeClipping,
+    canvas: Option<Rect>,
+    robust: bool,
+) -> bool {
+    // The empty reference at the anchor: the window is the loop's.
+    let nothing = Reference::new(anchor, &[]);
+    (!robust
+        || misplaced_when_moved(&nothing, anchor, lp, super::ROBUST_SHIFT, clipping, canvas)
+            .is_empty())
+        && misplaced_pixels(&nothing, anchor, lp, clipping, canvas).is_empty()
+        && super::tiles::misplaced_in_tiles(&nothing, anchor, lp, canvas).is_empty()
+        && (!robust
+            || finely_flattened(anchor, lp).is_none_or(|fine| {
+                misplaced_pixels(&nothing, anchor, &fine, EdgeClipping::Never, None).is_empty()
+            }))
+}
+
 /// Largest distance (pixels) of the polyline [`finely_flattened`] draws to the true curves.
 pub const FINE_FLATTENING: f64 = 0.01;
 

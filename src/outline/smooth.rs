@@ -27,11 +27,7 @@
 //! must bend enough that the renderer does not draw them in two chords.
 
 use super::builder::Builder;
-use super::render_check::{
-    finely_flattened, misplaced_pixels, misplaced_when_moved, EdgeClipping, Reference,
-};
-use super::tiles::misplaced_in_tiles;
-use super::ROBUST_SHIFT;
+use super::render_check::{loop_paints_nothing, misplaced_pixels, EdgeClipping, Reference};
 use crate::curve::PathCommand;
 use kurbo::{ParamCurve, ParamCurveNearest, Point, Vec2};
 
@@ -175,8 +171,9 @@ fn cubic_over_three(
 
 /// How far tiny-skia and Skia estimate the cubic `a p1 p2 b` to bend, in 1/64 px
 /// (`cubic_delta_from_line` and `cheap_distance` of their `edge.rs`): below 48 they draw
-/// it in two chords, from 48 to 111 in four, from 112 in eight or more.
-fn chord_estimate(a: Point, p1: Point, p2: Point, b: Point) -> i64 {
+/// it in two chords, from 48 to 239 in four, from 240 in eight or more (see
+/// [`super::absorb`]'s `chord_shift`).
+pub(super) fn chord_estimate(a: Point, p1: Point, p2: Point, b: Point) -> i64 {
     let f = |v: f64| (v * 64.0) as i64;
     let delta = |a: f64, b: f64, c: f64, d: f64| {
         let (a, b, c, d) = (f(a), f(b), f(c), f(d));
@@ -226,17 +223,7 @@ pub(crate) fn smooth_polygon(
         for (slot, k) in lp[1..].iter_mut().zip((j..j + len).rev()) {
             *slot = PathCommand::Line(vertex(k));
         }
-        let lp = &lp[..=len];
-        // The empty reference at A: the window is the loop's.
-        let nothing = Reference::new(a, &[]);
-        // Moved sideways by `ROBUST_SHIFT` (see there) first, as the contour check does.
-        (!fine || misplaced_when_moved(&nothing, a, lp, ROBUST_SHIFT, clipping, canvas).is_empty())
-            && misplaced_pixels(&nothing, a, lp, clipping, canvas).is_empty()
-            && misplaced_in_tiles(&nothing, a, lp, canvas).is_empty()
-            && (!fine
-                || finely_flattened(a, lp).is_none_or(|fine| {
-                    misplaced_pixels(&nothing, a, &fine, EdgeClipping::Never, None).is_empty()
-                }))
+        loop_paints_nothing(a, &lp[..=len], clipping, canvas, fine)
     };
     // The cosine of the turn at vertex v; `None` beside a zero-length segment.
     let turn_cos =
