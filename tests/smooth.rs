@@ -61,9 +61,10 @@ fn samples_within_one_pixel_with_fewer_commands() {
         px += d;
     }
     // Smoothing is what it is for: far fewer commands than the exact outline (measured:
-    // about 40% of them on these samples).
+    // 4 186 of 6 820, 61%, since the exact drawings draw runs as fitted cubics; about 40%
+    // before they merged lines and runs).
     assert!(
-        smooth * 10 < exact * 6,
+        smooth * 100 < exact * 65,
         "{smooth} smooth commands, {exact} exact"
     );
     println!("ν = 1: {smooth} commands (exact {exact}), {px} px differ");
@@ -93,11 +94,11 @@ fn the_scan_at_one_pixel() {
         .threshold(Threshold::ADAPTIVE)
         .turdsize(4);
     let (exact, smooth, _) = check(&scan, 1.0, options);
-    // Measured: 17 069 commands smooth, 23 731 exact (72%; 60% before the exact drawings
-    // merged their lines, 28 190 exact); the ragged edges of the scan's letters are what
-    // smoothing removes.
+    // Measured: 17 036 commands smooth, 22 375 exact (76%; 72% before the exact drawings
+    // drew runs as fitted cubics, 23 731 exact; 60% before they merged their lines, 28 190
+    // exact); the ragged edges of the scan's letters are what smoothing removes.
     assert!(
-        smooth * 4 < exact * 3,
+        smooth * 100 < exact * 80,
         "{smooth} smooth commands, {exact} exact"
     );
 }

@@ -25,12 +25,16 @@
 //! cracks remain only where the input has one-pixel features, and curves remain wherever
 //! the renderer draws them right. Last, the corners inside the pixel staircases those
 //! cracks leave are cut ([`corners`]): half-pixel chamfers that keep every pixel centre on
-//! its side, so a lone pixel becomes a diamond and a one-pixel spur a spike.
+//! its side, so a lone pixel becomes a diamond and a one-pixel spur a spike. Then vertices
+//! between lines that change no pixel go ([`merge`]), and runs of commands along gentle
+//! turns become single cubics fitted through the cracks they follow, where the renderer
+//! draws them the same ([`absorb`]; not for the line model, whose drawing stays straight).
 //!
 //! # Orientation
 //! Outer borders run counter-clockwise on screen, hole borders clockwise (the foreground
 //! on the left); with the `nonzero` fill rule the foreground has winding ±1, holes 0.
 
+mod absorb;
 mod band_cells;
 mod band_path;
 mod band_polygon;
@@ -65,6 +69,7 @@ pub(crate) use staircase::has_staircase;
 use crate::contour::Contour;
 use crate::decompose::Piece;
 use crate::model::Basis;
+use absorb::{absorb_runs, Cracks};
 use builder::Builder;
 use coarse::coarse_cracks;
 use corners::cut_staircase_corners;
@@ -109,10 +114,11 @@ pub struct OutlineOptions {
     /// Keep the square corners of one-pixel features (pixel art): the corners inside pixel
     /// staircases are not cut (see [`contour_path`]). Default `false`.
     pub square_corners: bool,
-    /// Drop the vertices between lines that change no pixel (see [`contour_path`]). Default
-    /// `true`; the colour layouts keep them: a merged edge draws the same pixel centres in
-    /// crispEdges but not the same anti-aliased coverage, which the stack's overlaps rely
-    /// on, and the partition cuts shared borders at vertices that must stay.
+    /// Drop the vertices between lines that change no pixel, and draw runs of commands along
+    /// gentle turns as single cubics where that changes no pixel (see [`contour_path`]).
+    /// Default `true`; the colour layouts keep their commands: a merged edge draws the same
+    /// pixel centres in crispEdges but not the same anti-aliased coverage, which the stack's
+    /// overlaps rely on, and the partition cuts shared borders at vertices that must stay.
     pub merge_lines: bool,
 }
 
@@ -199,10 +205,96 @@ pub fn contour_path(
     // Then vertices between lines that change no pixel go (the cut corners' too).
     if opts.merge_lines {
         if let Some(merged) = merge_lines(path.start, &path.commands, opts.canvas) {
-            path.commands = merged;
+            // A merge may join a cut corner's chamfer to its neighbour and bring a step of a
+            // staircase back: such merges are not kept.
+            if !has_staircase(path.start, &merged) || has_staircase(path.start, &path.commands) {
+                path.commands = merged;
+            }
+        }
+        // And runs along gentle turns become single cubics (the line model stays straight).
+        let n = contour.points.len();
+        if n > 1 && basis.dim() > crate::model::Model::Line.basis().dim() {
+            let cracks = Cracks::new(&crack_polyline(&contour.points, 0, n - 1));
+            if let Some(absorbed) = absorb_runs(
+                path.start,
+                &path.commands,
+                &cracks,
+                opts.grid.min(MAX_GRID),
+                opts.clipping,
+                opts.canvas,
+            ) {
+                // Each run's loop paints nothing, but the whole path is checked as a contour
+                // is: tiny-skia cuts curves at their extrema in `f32`, whose rounding depends
+                // on the origin (one pixel of 24 random ellipses in a test).
+                let c = cracks_path(&contour.points);
+                let reference = Reference::new(c.start, &c.commands);
+                if misplaced_anywhere(&reference, &reference, absorbed.0, &absorbed.1, opts)
+                    .is_empty()
+                {
+                    (path.start, path.commands) = absorbed;
+                }
+            }
         }
     }
     path
+}
+
+/// The pixels the path `M start commands Z` draws wrong against `reference` (the contour's
+/// crack polygon or its coarse stand-in; `cracks` the crack polygon itself), by the first
+/// check that finds any: moved by [`ROBUST_SHIFT`], plain, both ways of drawing curves,
+/// in Chromium's tiles, finely flattened. Empty when the path is exact.
+fn misplaced_anywhere(
+    reference: &Reference,
+    cracks: &Reference,
+    start: kurbo::Point,
+    commands: &[crate::curve::PathCommand],
+    opts: &OutlineOptions,
+) -> Vec<crate::pixel::Pixel> {
+    // Unknown clipping draws curves both ways; the second way is only tried once the first
+    // draws every pixel right (what it finds then is remedied in the next round): one fill
+    // per round instead of two.
+    let first_way = match opts.clipping {
+        EdgeClipping::Unknown => EdgeClipping::Never,
+        known => known,
+    };
+    // Moved by 1/64 px sideways first: no edge may cross a row of pixel centres within
+    // 1/64 px of a centre, where Skia's fixed point (Chromium) may round it to the other
+    // side. Where the plain fill is wrong the moved one mostly is too, and it also finds
+    // the fragile places, so one round remedies both (27 shared samples, conic: 4% fewer
+    // rounds, 5% fewer instructions in all).
+    let mut wrong = misplaced_when_moved(
+        reference,
+        start,
+        commands,
+        ROBUST_SHIFT,
+        first_way,
+        opts.canvas,
+    );
+    if wrong.is_empty() {
+        wrong = misplaced_pixels(reference, start, commands, first_way, opts.canvas);
+    }
+    if wrong.is_empty() && first_way != opts.clipping {
+        wrong = misplaced_pixels(
+            reference,
+            start,
+            commands,
+            EdgeClipping::Always,
+            opts.canvas,
+        );
+    }
+    if wrong.is_empty() {
+        // Exact in Chromium's tiles too, where they cut the path (see `tiles`); against the
+        // cracks themselves, which a cut at a whole pixel leaves as they are (the coarse
+        // stand-in's slanted edges would be tilted too).
+        wrong = misplaced_in_tiles(cracks, start, commands, opts.canvas);
+    }
+    if wrong.is_empty() {
+        // Exact in tiny-skia; also with the true curves (other renderers).
+        if let Some(fine) = finely_flattened(start, commands) {
+            wrong = misplaced_pixels(reference, start, &fine, EdgeClipping::Never, None);
+        }
+    }
+    wrong
 }
 
 /// [`contour_path`] before the corners of its staircases are cut.
@@ -310,57 +402,7 @@ fn exact_path(
                 (cracks, coarse)
             });
             let reference = coarse.as_ref().unwrap_or(cracks);
-            // Unknown clipping draws curves both ways; the second way is only tried once
-            // the first draws every pixel right (what it finds then is remedied in the
-            // next round): one fill per round instead of two.
-            let first_way = match opts.clipping {
-                EdgeClipping::Unknown => EdgeClipping::Never,
-                known => known,
-            };
-            // Moved by 1/64 px sideways first: no edge may cross a row of pixel centres
-            // within 1/64 px of a centre, where Skia's fixed point (Chromium) may round it
-            // to the other side. Where the plain fill is wrong the moved one mostly is too,
-            // and it also finds the fragile places, so one round remedies both (27 shared
-            // samples, conic: 4% fewer rounds, 5% fewer instructions in all).
-            let mut wrong = misplaced_when_moved(
-                reference,
-                path.start,
-                &path.commands,
-                ROBUST_SHIFT,
-                first_way,
-                opts.canvas,
-            );
-            if wrong.is_empty() {
-                wrong = misplaced_pixels(
-                    reference,
-                    path.start,
-                    &path.commands,
-                    first_way,
-                    opts.canvas,
-                );
-            }
-            if wrong.is_empty() && first_way != opts.clipping {
-                wrong = misplaced_pixels(
-                    reference,
-                    path.start,
-                    &path.commands,
-                    EdgeClipping::Always,
-                    opts.canvas,
-                );
-            }
-            if wrong.is_empty() {
-                // Exact in Chromium's tiles too, where they cut the path (see `tiles`);
-                // against the cracks themselves, which a cut at a whole pixel leaves as they
-                // are (the coarse stand-in's slanted edges would be tilted too).
-                wrong = misplaced_in_tiles(cracks, path.start, &path.commands, opts.canvas);
-            }
-            if wrong.is_empty() {
-                // Exact in tiny-skia; also with the true curves (other renderers).
-                if let Some(fine) = finely_flattened(path.start, &path.commands) {
-                    wrong =
-                        misplaced_pixels(reference, path.start, &fine, EdgeClipping::Never, None);
-                }
-            }
+            let wrong = misplaced_anywhere(reference, cracks, path.start, &path.commands, opts);
             if wrong.is_empty() {
                 let mut path = path;
                 if built.smooth.iter().any(|&t| t) {

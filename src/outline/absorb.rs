@@ -1,0 +1,825 @@
+//! Fewer commands along smooth stretches: a run of consecutive commands (the polygons that
+//! replaced curves, the cubics through them) drawn as one cubic that the renderer draws the
+//! same.
+//!
+//! A crack of the contour lies between a pixel centre of the shape and one of the
+//! background; a curve separates the two when it crosses the segment between them. So the
+//! cubic `B` from `A` to `E` that replaces a run must pass each crack's middle `T` within
+//! `tol = ½ |sin θ|` px across the curve (θ between the curve and that segment; a glancing
+//! crossing leaves little room), and so must the `N = 2^k` chords tiny-skia and Skia draw it
+//! with, between its points at `t = i / N` (`k` from how far its control points stray from
+//! its chord, [`chord_shift`]). Both are linear in the control points `P1`, `P2`:
+//!
+//! ```text
+//! B(u)  = (1−u)³ A + 3u(1−u)² P1 + 3u²(1−u) P2 + u³ E,
+//! Bₙ(u) = (1 − f) B(i/N) + f B((i+1)/N),   i + f = u N,
+//! min over P1, P2 of  max over the cracks of  |n · (B(u) − T)| / tol,  |n · (Bₙ(u) − T)| / tol,
+//! ```
+//!
+//! (`n` the normal of the contour there, `u` the crack's parameter on the curve), which a
+//! few rounds of Lawson's reweighted least squares approach ([`fit`]); the parameters are
+//! then moved to the cracks' nearest points on the curve and the chord count updated, and
+//! the cubic fitted again. A fit that stays within every tolerance is snapped to the grid
+//! and kept only where it changes no pixel, as [`super::smooth`]'s crossing cubics are: the
+//! loop from the cubic back along the run paints nothing, also moved by 1/64 px, in
+//! Chromium's tiles, finely flattened, and with the control points moved by 1/32 px (Skia's
+//! fixed point); its chord estimate is clear of the bounds where the renderer would cut it
+//! into a different number of chords, and it does not loop. Runs turn by at most
+//! [`super::smooth::MAX_TURN_DEGREES`] at each vertex, so no corner of the shape is rounded,
+//! and the path is first made to start at its sharpest corner (runs do not wrap round its
+//! start). From each command on, runs are fitted doubling their length while they fit, then
+//! halving the gap to the first that does not; the longest that fit are checked in the
+//! renderer first.
+
+use super::builder::Builder;
+use super::render_check::{loop_paints_nothing, EdgeClipping};
+use super::smooth::{chord_estimate, MAX_TURN_DEGREES};
+use super::tiles::clear_of_tile_cuts;
+use crate::curve::PathCommand;
+use kurbo::{CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
+use std::collections::HashMap;
+
+/// Most commands one cubic replaces: bounds the loops' length and the fits' work (8 and 12
+/// gave the same commands on the 27 shared samples).
+const MAX_RUN: usize = 8;
+
+/// Runs that fit, from one command on, checked in the renderer (longest first; 27 shared
+/// samples, conic: 7 811 drawing commands checking one, 7 639 checking three).
+const MAX_CHECKED: usize = 3;
+
+/// How far (1/64 px) a cubic's chord estimate must stay from a bound where the renderer
+/// changes its number of chords: Skia rounds the control points a little differently.
+const CHORD_MARGIN: i64 = 8;
+
+/// Commands shorter than this (px) from end to end have no direction of their own: the turn
+/// across them is measured between their neighbours.
+const MIN_DIRECTED: f64 = 1.0;
+
+/// How far (px) the control points are moved for the robustness check.
+const NUDGE: f64 = 1.0 / 32.0;
+
+/// Cracks whose tolerance is below this (px: the contour runs nearly along the segment
+/// between their pixel centres) are left out of the fit; the renderer check sees them.
+const MIN_TOLERANCE: f64 = 0.02;
+
+/// How many chords (`2^shift`) tiny-skia and Skia cut a y-monotonic cubic into, from its
+/// [`chord_estimate`] `d` in 1/64 px (`diff_to_shift(dx, dy, 2) + 1` of their `edge.rs`,
+/// capped at 6): two below 48, four below 240, eight below 1008, and so on.
+fn chord_shift(d: i64) -> u32 {
+    let dist = (d.max(0) + 16) >> 5;
+    (((64 - dist.leading_zeros()) >> 1) + 1).min(6)
+}
+
+/// Whether `d` lies at least [`CHORD_MARGIN`] from a bound of [`chord_shift`].
+fn clear_of_bounds(d: i64) -> bool {
+    chord_shift(d - CHORD_MARGIN) == chord_shift(d + CHORD_MARGIN)
+}
+
+/// The Bernstein weights of `A, P1, P2, E` at `t`.
+fn bernstein(t: f64) -> [f64; 4] {
+    let s = 1.0 - t;
+    [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t]
+}
+
+/// The weights of `A, P1, P2, E` in the point at the fraction `u` of the cubic's polygon of
+/// `chords` chords (between its points at `t = i / chords`).
+fn chord_weights(u: f64, chords: u32) -> [f64; 4] {
+    let n = f64::from(chords);
+    let i = (u * n).floor().clamp(0.0, n - 1.0);
+    let f = u * n - i;
+    let (b0, b1) = (bernstein(i / n), bernstein((i + 1.0) / n));
+    std::array::from_fn(|k| (1.0 - f) * b0[k] + f * b1[k])
+}
+
+/// A crack the cubic must pass: its middle `t`, within `tol` (px) along `normal`; `u` its
+/// parameter on the curve, `u0` its fraction of the run's length (kept by the rows along the
+/// run, so the control points spread as the run does).
+#[derive(Clone, Copy)]
+struct Sample {
+    u: f64,
+    u0: f64,
+    t: Point,
+    normal: Vec2,
+    tol: f64,
+}
+
+/// The control points of the cubic from `a` to `e` that pass, with its polygon of `chords`
+/// chords (none when 0), nearest to the samples relative to their tolerances: the largest
+/// `|n · (C(u) − T)| / tol` is reduced by Lawson's reweighted least squares (see the module
+/// documentation). Returns the control points and that largest ratio, or `None` when the
+/// system is singular.
+fn fit(
+    a: Point,
+    e: Point,
+    samples: &[Sample],
+    chords: u32,
+    rounds: usize,
+) -> Option<([Point; 2], f64)> {
+    // Rows `coef · p = rhs`, p = (P1x, P1y, P2x, P2y).
+    let mut rows: Vec<([f64; 4], f64)> = Vec::with_capacity(2 * samples.len());
+    // Along the run, loosely: fixes the control points where the normals leave them free
+    // (a straight run).
+    let mut along: Vec<([f64; 4], f64)> = Vec::with_capacity(samples.len());
+    let row = |c: [f64; 4], n: Vec2, t: Point, tol: f64| {
+        let coef = [c[1] * n.x, c[1] * n.y, c[2] * n.x, c[2] * n.y].map(|v| v / tol);
+        let rhs =
+            (n.dot(t.to_vec2()) - c[0] * n.dot(a.to_vec2()) - c[3] * n.dot(e.to_vec2())) / tol;
+        (coef, rhs)
+    };
+    for s in samples {
+        rows.push(row(bernstein(s.u), s.normal, s.t, s.tol));
+        if chords > 0 {
+            rows.push(row(chord_weights(s.u, chords), s.normal, s.t, s.tol));
+        }
+        let tangent = Vec2::new(-s.normal.y, s.normal.x);
+        along.push(row(bernstein(s.u0), tangent, s.t, ALONG_TOLERANCE));
+    }
+    // `lhs += w c cᵀ`, `rhs += w c r` (the upper triangle; mirrored before solving).
+    let add = |lhs: &mut [[f64; 4]; 4], rhs: &mut [f64; 4], (c, r): &([f64; 4], f64), w: f64| {
+        for i in 0..4 {
+            let wc = w * c[i];
+            for k in i..4 {
+                lhs[i][k] += wc * c[k];
+            }
+            rhs[i] += wc * r;
+        }
+    };
+    // The rows along the run keep their weight: summed once.
+    let (mut lhs0, mut rhs0) = ([[0.0f64; 4]; 4], [0.0f64; 4]);
+    let wa = 1.0 / (along.len().max(1) * 100) as f64;
+    for r in &along {
+        add(&mut lhs0, &mut rhs0, r, wa);
+    }
+    let m = rows.len();
+    let mut w = vec![1.0 / m as f64; m];
+    let mut res = vec![0.0; m];
+    let mut best: Option<([f64; 4], f64)> = None;
+    for _ in 0..rounds {
+        let (mut lhs, mut rhs) = (lhs0, rhs0);
+        for (r, &wi) in rows.iter().zip(&w) {
+            add(&mut lhs, &mut rhs, r, wi);
+        }
+        for i in 0..4 {
+            for k in 0..i {
+                lhs[i][k] = lhs[k][i];
+            }
+        }
+        let p = solve4(lhs, rhs)?;
+        let mut worst = 0.0f64;
+        let mut total = 0.0;
+        for ((c, r), (ri, wi)) in rows.iter().zip(res.iter_mut().zip(&w)) {
+            *ri = (c[0] * p[0] + c[1] * p[1] + c[2] * p[2] + c[3] * p[3] - r).abs();
+            worst = worst.max(*ri);
+            total += wi * *ri;
+        }
+        if best.is_none_or(|(_, b)| worst < b) {
+            best = Some((p, worst));
+        }
+        if total <= 1e-12 {
+            break;
+        }
+        for (wi, r) in w.iter_mut().zip(&res) {
+            *wi *= r / total;
+        }
+    }
+    let (p, worst) = best?;
+    Some(([Point::new(p[0], p[1]), Point::new(p[2], p[3])], worst))
+}
+
+/// Rounds of Lawson's reweighting in [`fit`]: the best of the first few is kept, and few
+/// rounds do best (27 shared samples, conic: 7 904 drawing commands after one, 7 566 after
+/// three, 7 742 after thirty: the later rounds' fits lean on fewer cracks and pass the
+/// renderer check less often).
+const LAWSON_ROUNDS: usize = 3;
+
+/// Tolerance (px) of the rows along the run in [`fit`].
+const ALONG_TOLERANCE: f64 = 4.0;
+
+/// Solves `m x = r` (Gaussian elimination with partial pivoting); `None` if singular.
+fn solve4(mut m: [[f64; 4]; 4], mut r: [f64; 4]) -> Option<[f64; 4]> {
+    let scale = m.iter().flatten().fold(0.0f64, |s, v| s.max(v.abs()));
+    for col in 0..4 {
+        let piv = (col..4).max_by(|&i, &k| m[i][col].abs().total_cmp(&m[k][col].abs()))?;
+        if m[piv][col].abs() <= 1e-12 * scale {
+            return None;
+        }
+        m.swap(col, piv);
+        r.swap(col, piv);
+        for i in col + 1..4 {
+            let f = m[i][col] / m[col][col];
+            for k in col..4 {
+                m[i][k] -= f * m[col][k];
+            }
+            r[i] -= f * r[col];
+        }
+    }
+    let mut x = [0.0; 4];
+    for i in (0..4).rev() {
+        let s: f64 = (i + 1..4).map(|k| m[i][k] * x[k]).sum();
+        x[i] = (r[i] - s) / m[i][i];
+    }
+    Some(x)
+}
+
+/// A contour's crack polygon in unit steps, for the fit's target: the middles of its cracks
+/// lie half-way between each pixel centre of the contour and the background centre beside
+/// it, where a curve separating them has the most room.
+pub(crate) struct Cracks {
+    /// The corners, one unit step apart; the last steps back to the first.
+    corners: Vec<Point>,
+    /// The indices of the corners at each integer point.
+    at: HashMap<(i64, i64), Vec<usize>>,
+}
+
+impl Cracks {
+    /// The crack polygon through the corners `polyline` (closed; axis-aligned steps of
+    /// whole pixels).
+    pub(crate) fn new(polyline: &[Point]) -> Cracks {
+        let mut corners: Vec<Point> = Vec::with_capacity(polyline.len() + 4);
+        for w in polyline.windows(2) {
+            let steps = (w[1] - w[0]).hypot().round().max(1.0) as usize;
+            corners.extend((0..steps).map(|k| w[0].lerp(w[1], k as f64 / steps as f64)));
+        }
+        if let (Some(&last), Some(&first)) = (polyline.last(), polyline.first()) {
+            if last != first {
+                corners.push(last);
+            }
+        }
+        let mut at: HashMap<(i64, i64), Vec<usize>> = HashMap::with_capacity(corners.len());
+        for (i, p) in corners.iter().enumerate() {
+            at.entry((p.x.round() as i64, p.y.round() as i64))
+                .or_default()
+                .push(i);
+        }
+        Cracks { corners, at }
+    }
+
+    /// The corners within one pixel of `p`.
+    fn near(&self, p: Point) -> Vec<usize> {
+        let (x, y) = (p.x.round() as i64, p.y.round() as i64);
+        let mut out = Vec::new();
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                if let Some(v) = self.at.get(&(x + dx, y + dy)) {
+                    out.extend(
+                        v.iter()
+                            .copied()
+                            .filter(|&i| (self.corners[i] - p).hypot() <= 1.0),
+                    );
+                }
+            }
+        }
+        out
+    }
+
+    /// The middles of the cracks from a corner near `a` forward to one near `e`, between
+    /// `a` and `e`: the shortest such stretch of at least two and at most `max_steps` cracks.
+    /// Returns `None` if there is none.
+    fn between(&self, a: Point, e: Point, max_steps: usize) -> Option<Vec<Point>> {
+        let m = self.corners.len();
+        let (from, to) = (self.near(a), self.near(e));
+        let (ia, steps) = from
+            .iter()
+            .flat_map(|&i| to.iter().map(move |&j| (i, (j + m - i) % m)))
+            .filter(|&(_, d)| (2..=max_steps).contains(&d))
+            .min_by_key(|&(_, d)| d)?;
+        let mut pts = Vec::with_capacity(steps + 2);
+        pts.push(a);
+        pts.extend(
+            (0..steps).map(|k| self.corners[(ia + k) % m].midpoint(self.corners[(ia + k + 1) % m])),
+        );
+        pts.push(e);
+        Some(pts)
+    }
+}
+
+/// The start and end directions of a command from `from`; `None` for one shorter than
+/// [`MIN_DIRECTED`].
+fn directions(from: Point, c: &PathCommand) -> Option<(Vec2, Vec2)> {
+    let end = c.end();
+    if (end - from).hypot() < MIN_DIRECTED {
+        return None;
+    }
+    let unit = |v: Vec2| {
+        let h = v.hypot();
+        (h > 1e-9).then(|| v / h)
+    };
+    let (first, last) = match *c {
+        PathCommand::Line(_) => (end, from),
+        PathCommand::Quad(q, _) => (q, q),
+        PathCommand::Cubic(p1, p2, _) => (
+            if p1 == from { p2 } else { p1 },
+            if p2 == end { p1 } else { p2 },
+        ),
+        PathCommand::Arc(_) => return None,
+    };
+    Some((unit(first - from)?, unit(end - last)?))
+}
+
+/// The loop from `a` along `cubic`, then back along `cmds` (from `a`) to `a`.
+fn difference_loop(a: Point, cubic: PathCommand, cmds: &[PathCommand]) -> Vec<PathCommand> {
+    let mut starts = Vec::with_capacity(cmds.len());
+    let mut pen = a;
+    for c in cmds {
+        starts.push(pen);
+        pen = c.end();
+    }
+    let mut lp = Vec::with_capacity(cmds.len() + 1);
+    lp.push(cubic);
+    for (c, &from) in cmds.iter().zip(&starts).rev() {
+        lp.push(match *c {
+            PathCommand::Quad(q, _) => PathCommand::Quad(q, from),
+            PathCommand::Cubic(p1, p2, _) => PathCommand::Cubic(p2, p1, from),
+            _ => PathCommand::Line(from),
+        });
+    }
+    lp
+}
+
+/// The parameters of the points of `bez` nearest to the samples' cracks: from the nearest
+/// of 64 points along the curve, found walking along it as the samples go (`walk`), else
+/// from their last values; then two Newton steps.
+fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) {
+    const STEPS: usize = 64;
+    let along: Vec<Point> = if walk {
+        (0..=STEPS)
+            .map(|k| bez.eval(k as f64 / STEPS as f64))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let (d1, d2) = (bez.deriv(), bez.deriv().deriv());
+    let mut at: usize = 0;
+    for s in samples {
+        let mut u = s.u;
+        if walk {
+            // The samples run along the curve: search a little back and further ahead.
+            let lo = at.saturating_sub(4);
+            let hi = (at + 16).min(STEPS);
+            at = (lo..=hi)
+                .min_by(|&i, &j| {
+                    (along[i] - s.t)
+                        .hypot2()
+                        .total_cmp(&(along[j] - s.t).hypot2())
+                })
+                .unwrap_or(at);
+            u = at as f64 / STEPS as f64;
+        }
+        for _ in 0..2 {
+            let off = bez.eval(u) - s.t;
+            let v = d1.eval(u).to_vec2();
+            let den = v.hypot2() + off.dot(d2.eval(u).to_vec2());
+            if den > 1e-12 {
+                u = (u - off.dot(v) / den).clamp(0.0, 1.0);
+            }
+        }
+        s.u = u;
+    }
+}
+
+/// The cubic from `a` through the cracks `cmds` passes (see the module documentation),
+/// snapped to the grid, before the renderer check. Returns `None` when no cubic found
+/// passes every crack within its tolerance, or it loops, or its chord count is uncertain.
+fn fitted_cubic(
+    a: Point,
+    cmds: &[PathCommand],
+    cracks: &Cracks,
+    snap: &Builder,
+) -> Option<PathCommand> {
+    let e = cmds.last()?.end();
+    // The run's length along its control polygons (at least its curves' length).
+    let mut run_length = 0.0;
+    let mut pen = a;
+    for c in cmds {
+        run_length += match *c {
+            PathCommand::Quad(q, e) => (q - pen).hypot() + (e - q).hypot(),
+            PathCommand::Cubic(p1, p2, e) => {
+                (p1 - pen).hypot() + (p2 - p1).hypot() + (e - p2).hypot()
+            }
+            _ => (c.end() - pen).hypot(),
+        };
+        pen = c.end();
+    }
+    // A crack path is at most √2 times as long as the curve it follows.
+    let max_steps = (1.5 * run_length) as usize + 3;
+    let target = cracks.between(a, e, max_steps)?;
+    let mut lengths = Vec::with_capacity(target.len());
+    let mut total = 0.0;
+    for w in target.windows(2) {
+        total += (w[1] - w[0]).hypot();
+        lengths.push(total);
+    }
+    if total < 2.0 * MIN_DIRECTED {
+        return None;
+    }
+    // The cracks' middles, at their fraction of the run's length; the contour's direction
+    // there from four cracks before to four after.
+    let last = target.len() - 1;
+    let mut samples: Vec<Sample> = (1..last)
+        .filter_map(|k| {
+            let p = target[k];
+            let along = target[(k + 4).min(last)] - target[k.saturating_sub(4)];
+            let along = along / along.hypot().max(1e-9);
+            // The segment between the pixel centres beside the crack.
+            let across = if (p.y - p.y.round()).abs() < 1e-9 {
+                Vec2::new(0.0, 1.0)
+            } else {
+                Vec2::new(1.0, 0.0)
+            };
+            let tol = 0.5 * along.cross(across).abs();
+            (tol >= MIN_TOLERANCE).then_some(Sample {
+                u: lengths[k - 1] / total,
+                u0: lengths[k - 1] / total,
+                t: p,
+                normal: Vec2::new(-along.y, along.x),
+                tol,
+            })
+        })
+        .collect();
+    // First the curve alone, by plain least squares: a start for the chord count.
+    let (mut control, _) = fit(a, e, &samples, 0, 1)?;
+    let mut chords = 0;
+    let mut worst = f64::INFINITY;
+    // Fitted again with the chords of the last fit, at the curve's nearest parameters.
+    for round in 0..FIT_ROUNDS {
+        chords = 1u32 << chord_shift(chord_estimate(a, control[0], control[1], e));
+        reparametrize(
+            &CubicBez::new(a, control[0], control[1], e),
+            &mut samples,
+            round == 0,
+        );
+        (control, worst) = fit(a, e, &samples, chords, LAWSON_ROUNDS)?;
+        if worst > GIVE_UP && round + 1 < FIT_ROUNDS {
+            return None;
+        }
+    }
+    if worst > MAX_WORST {
+        return None;
+    }
+    let [p1, p2] = [snap.snap(control[0]), snap.snap(control[1])];
+    let d = chord_estimate(a, p1, p2, e);
+    if 1u32 << chord_shift(d) != chords || !clear_of_bounds(d) {
+        return None;
+    }
+    // Control points ahead of the ends along the chord, within its reach: the cubic does not
+    // loop.
+    let chord = e - a;
+    let reach = chord.hypot();
+    if (p1 - a).dot(chord) <= 0.0
+        || (e - p2).dot(chord) <= 0.0
+        || (p1 - a).hypot() >= reach
+        || (e - p2).hypot() >= reach
+    {
+        return None;
+    }
+    Some(PathCommand::Cubic(p1, p2, e))
+}
+
+/// Largest ratio of a fit's distance to a crack's middle to its tolerance: a margin for
+/// renderers that cut curves a little differently from tiny-skia.
+const MAX_WORST: f64 = 1.0;
+
+/// Rounds of [`fitted_cubic`]'s fit after the first (27 shared samples, conic: 7 724
+/// drawing commands after two, 7 639 after three).
+const FIT_ROUNDS: usize = 3;
+
+/// A fit this far beyond its tolerances before its last round is given up (saves 2% of the
+/// instructions for 5 commands more over the 27 shared samples).
+const GIVE_UP: f64 = 2.0;
+
+/// Whether drawing `cubic` from `a` instead of `cmds` changes no pixel, also with its
+/// control points moved by [`NUDGE`] (see the module documentation).
+fn changes_nothing(
+    a: Point,
+    cubic: PathCommand,
+    cmds: &[PathCommand],
+    clipping: EdgeClipping,
+    canvas: Option<kurbo::Rect>,
+) -> bool {
+    let PathCommand::Cubic(p1, p2, e) = cubic else {
+        return false;
+    };
+    // Not across the lines where Chromium's tiles cut paths: Skia cuts the curve there and
+    // draws each part in chords of its own, which tiny-skia's clipped fill in the tiles does
+    // not always match (2 pixels of the 27 shared samples in Chromium, conic, where the
+    // loop painted nothing in tiny-skia's tiles, also moved by 1/64 px each way).
+    let bounds = kurbo::Rect::from_points(a, e).union_pt(p1).union_pt(p2);
+    if !clear_of_tile_cuts(
+        bounds.x0.floor() as i64,
+        bounds.y0.floor() as i64,
+        bounds.x1.ceil() as i64,
+        bounds.y1.ceil() as i64,
+        canvas,
+        0,
+    ) {
+        return false;
+    }
+    loop_paints_nothing(a, &difference_loop(a, cubic, cmds), clipping, canvas, true)
+        && [
+            (NUDGE, NUDGE),
+            (NUDGE, -NUDGE),
+            (-NUDGE, NUDGE),
+            (-NUDGE, -NUDGE),
+        ]
+        .into_iter()
+        .all(|(dx, dy)| {
+            let d = Vec2::new(dx, dy);
+            let moved = PathCommand::Cubic(p1 + d, p2 + d, e);
+            loop_paints_nothing(a, &difference_loop(a, moved, cmds), clipping, canvas, false)
+        })
+}
+
+/// The closed path `M start commands Z` with runs of two or more commands along gentle turns
+/// drawn as one cubic each where that changes no pixel (see the module documentation); the
+/// start vertex stays. Returns `None` if no run is replaced.
+pub(crate) fn absorb_runs(
+    start: Point,
+    commands: &[PathCommand],
+    cracks: &Cracks,
+    grid: u8,
+    clipping: EdgeClipping,
+    canvas: Option<kurbo::Rect>,
+) -> Option<(Point, Vec<PathCommand>)> {
+    let n = commands.len();
+    if n < 3 {
+        return None;
+    }
+    // The path starts at its sharpest corner, which no run crosses anyway (when it is
+    // closed by its last command, not by `Z` alone).
+    let closed = commands[n - 1].end() == start;
+    let (start, commands) = if !closed {
+        (start, commands.to_vec())
+    } else {
+        let vertex = |j: usize| if j == 0 { start } else { commands[j - 1].end() };
+        let dirs: Vec<Option<(Vec2, Vec2)>> = (0..n)
+            .map(|j| directions(vertex(j), &commands[j]))
+            .collect();
+        let turn = |j: usize| match (dirs[(j + n - 1) % n], dirs[j]) {
+            (Some((_, inc)), Some((out, _))) => inc.dot(out),
+            _ => 1.0,
+        };
+        let sharpest = (0..n)
+            .min_by(|&i, &k| turn(i).total_cmp(&turn(k)))
+            .unwrap_or(0);
+        let mut rotated = commands[sharpest..].to_vec();
+        rotated.extend_from_slice(&commands[..sharpest]);
+        (vertex(sharpest), rotated)
+    };
+    let commands = &commands[..];
+    let snap = Builder::new(grid);
+    let vertex = |j: usize| if j == 0 { start } else { commands[j - 1].end() };
+    let dirs: Vec<Option<(Vec2, Vec2)>> = (0..n)
+        .map(|j| directions(vertex(j), &commands[j]))
+        .collect();
+    let cos_max = MAX_TURN_DEGREES.to_radians().cos();
+    let mut out = Vec::with_capacity(n);
+    let mut j = 0;
+    let mut any = false;
+    while j < n {
+        // The longest run from `j` allowed: gentle turns, no arc, at least two commands
+        // left.
+        let mut limit = 1;
+        let mut heading = dirs[j].map(|d| d.1);
+        while limit < MAX_RUN && j + limit < n && limit + 2 <= n {
+            let k = j + limit;
+            if matches!(commands[k], PathCommand::Arc(_)) {
+                break;
+            }
+            if let Some((first, last)) = dirs[k] {
+                if heading.is_some_and(|h| h.dot(first) < cos_max) {
+                    break;
+                }
+                heading = Some(last);
+            }
+            limit += 1;
+        }
+        // The runs from `j` that fit, (length, cubic), found by doubling the length while
+        // runs fit, then halving the gap to the first that does not (a longer run rarely fits
+        // where a shorter one does not).
+        let mut fitting: Vec<(usize, PathCommand)> = Vec::new();
+        let try_len = |len: usize, fitting: &mut Vec<(usize, PathCommand)>| {
+            let c = (dirs[j..j + len].iter().any(Option::is_some))
+                .then(|| fitted_cubic(vertex(j), &commands[j..j + len], cracks, &snap))
+                .flatten();
+            if let Some(c) = c {
+                fitting.push((len, c));
+            }
+            c.is_some()
+        };
+        if limit >= 2 {
+            // `lo` fits (or is 1), `hi` does not (or exceeds the limit).
+            let (mut lo, mut hi) = (1, limit + 1);
+            let mut len = 2;
+            while len <= limit {
+                if try_len(len, &mut fitting)
+                    || (len == 2 && limit >= 3 && try_len(3, &mut fitting))
+                {
+                    lo = fitting.last().map_or(lo, |f| f.0);
+                    len = 2 * lo;
+                } else {
+                    hi = len;
+                    break;
+                }
+            }
+            hi = hi.min(limit + 1);
+            while lo >= 2 && hi - lo > 1 {
+                let mid = (lo + hi) / 2;
+                if try_len(mid, &mut fitting) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            fitting.sort_by_key(|f| f.0);
+        }
+        let best = fitting
+            .iter()
+            .rev()
+            .take(MAX_CHECKED)
+            .find(|&&(len, c)| {
+                changes_nothing(vertex(j), c, &commands[j..j + len], clipping, canvas)
+            })
+            .copied();
+        match best {
+            Some((len, c)) => {
+                out.push(c);
+                j += len;
+                any = true;
+            }
+            None => {
+                out.push(commands[j]);
+                j += 1;
+            }
+        }
+    }
+    any.then_some((start, out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::render_check::{misplaced_pixels, Reference};
+    use super::super::{contour_path, cracks_path, merge_lines, OutlineOptions, ROBUST_SHIFT};
+    use super::*;
+    use crate::bitmap::Mask;
+    use crate::contour::{trace, Convention};
+    use crate::decompose::{decompose, OutlierRule};
+    use crate::model::Model;
+    use proptest::prelude::*;
+
+    #[test]
+    fn chord_counts_are_tiny_skias() {
+        // (estimate, shift) at the bounds of tiny-skia's `diff_to_shift(dx, dy, 2) + 1`.
+        for (d, shift) in [
+            (0, 1),
+            (47, 1),
+            (48, 2),
+            (239, 2),
+            (240, 3),
+            (1007, 3),
+            (1008, 4),
+            (4079, 4),
+            (4080, 5),
+            (16367, 5),
+            (16368, 6),
+            (1 << 40, 6),
+        ] {
+            assert_eq!(chord_shift(d), shift, "estimate {d}");
+        }
+        assert!(!clear_of_bounds(44) && !clear_of_bounds(245) && clear_of_bounds(100));
+    }
+
+    /// A mask of the ellipse with half-axes `rx`, `ry` turned by `angle`, centred at `c`.
+    fn ellipse(rx: f64, ry: f64, angle: f64, c: (f64, f64)) -> Mask {
+        let size = (2.0 * rx.max(ry) + 8.0).ceil() as u32;
+        let mut m = Mask::new(size, size);
+        let (s, k) = angle.sin_cos();
+        for y in 0..size {
+            for x in 0..size {
+                let (dx, dy) = (f64::from(x) + 0.5 - c.0, f64::from(y) + 0.5 - c.1);
+                let (u, v) = (k * dx + s * dy, -s * dx + k * dy);
+                m.set(
+                    i64::from(x),
+                    i64::from(y),
+                    (u / rx).powi(2) + (v / ry).powi(2) < 1.0,
+                );
+            }
+        }
+        m
+    }
+
+    /// Misplaced pixels of every contour's path of `mask` (conic), filled both ways, and
+    /// unclipped when moved by ±1/64 px; and the number of commands.
+    fn exactness(mask: &Mask) -> (usize, usize) {
+        let d = decompose(
+            trace(mask, Convention::Default),
+            Model::Conic,
+            OutlierRule::NotInPiece,
+        );
+        let basis = d.model.basis();
+        let (mut bad, mut commands) = (0, 0);
+        for (c, pieces) in d.contours.iter().zip(&d.pieces) {
+            let cp = contour_path(c, pieces, &basis, &OutlineOptions::default());
+            commands += cp.commands.len();
+            let cracks = cracks_path(&c.points);
+            for dx in [0.0, ROBUST_SHIFT, -ROBUST_SHIFT] {
+                let v = Vec2::new(dx, 0.0);
+                let moved = |cmds: &[PathCommand]| -> Vec<PathCommand> {
+                    cmds.iter().map(|c| c.translated(v)).collect()
+                };
+                let reference = Reference::new(cracks.start + v, &moved(&cracks.commands));
+                // Both ways of drawing curves in place; moved, the way a page's document
+                // is drawn (as every contour is checked, see `contour_path`).
+                let way = if dx == 0.0 {
+                    EdgeClipping::Unknown
+                } else {
+                    EdgeClipping::Never
+                };
+                bad += misplaced_pixels(&reference, cp.start + v, &moved(&cp.commands), way, None)
+                    .len();
+            }
+        }
+        (bad, commands)
+    }
+
+    #[test]
+    fn long_arcs_become_few_cubics() {
+        // A large turned ellipse: its exact polygon is many digital straight segments; runs
+        // of them become cubics that the renderer draws the same.
+        let mask = ellipse(70.0, 41.0, 0.5, (74.3, 74.8));
+        let d = decompose(
+            trace(&mask, Convention::Default),
+            Model::Conic,
+            OutlierRule::NotInPiece,
+        );
+        let basis = d.model.basis();
+        let c = &d.contours[0];
+        let plain = OutlineOptions {
+            merge_lines: false,
+            ..OutlineOptions::default()
+        };
+        let cp = contour_path(c, &d.pieces[0], &basis, &plain);
+        let merged = merge_lines(cp.start, &cp.commands, None).unwrap_or(cp.commands.clone());
+        let n = c.points.len();
+        let cracks = Cracks::new(&super::super::crack_polyline(&c.points, 0, n - 1));
+        let (start, absorbed) =
+            absorb_runs(cp.start, &merged, &cracks, 4, EdgeClipping::Unknown, None)
+                .expect("runs to absorb");
+        // (23 commands become 18 here.)
+        assert!(
+            absorbed.len() + 4 <= merged.len(),
+            "{} commands, {} before",
+            absorbed.len(),
+            merged.len()
+        );
+        let reference = cracks_path(&c.points);
+        let reference = Reference::new(reference.start, &reference.commands);
+        assert!(
+            misplaced_pixels(&reference, start, &absorbed, EdgeClipping::Unknown, None).is_empty()
+        );
+        assert_eq!(exactness(&mask).0, 0);
+    }
+
+    #[test]
+    fn a_fit_through_a_cubic_finds_it() {
+        // Samples on a cubic, tolerances of 1/4 px: the fit passes them all.
+        let (a, p1, p2, e) = (
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 8.0),
+            Point::new(25.0, 9.0),
+            Point::new(40.0, 2.0),
+        );
+        let bez = CubicBez::new(a, p1, p2, e);
+        let samples: Vec<Sample> = (1..40)
+            .map(|k| {
+                let u = f64::from(k) / 40.0;
+                let d = bez.deriv().eval(u).to_vec2();
+                let d = d / d.hypot();
+                Sample {
+                    u,
+                    u0: u,
+                    t: bez.eval(u),
+                    normal: Vec2::new(-d.y, d.x),
+                    tol: 0.25,
+                }
+            })
+            .collect();
+        let ([q1, q2], worst) = fit(a, e, &samples, 0, LAWSON_ROUNDS).expect("a fit");
+        assert!(worst < 1e-6, "worst {worst}");
+        assert!((q1 - p1).hypot() < 1e-6 && (q2 - p2).hypot() < 1e-6);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        /// Whatever runs become cubics, the renderer draws every pixel of an ellipse right,
+        /// also moved by 1/64 px.
+        #[test]
+        fn absorbing_changes_no_pixel(
+            rx in 4.0f64..40.0, ry in 4.0f64..40.0, angle in 0.0f64..3.2,
+            cx in 0.0f64..1.0, cy in 0.0f64..1.0,
+        ) {
+            let r = rx.max(ry);
+            let mask = ellipse(rx, ry, angle, (r + 4.0 + cx, r + 4.0 + cy));
+            prop_assert_eq!(exactness(&mask).0, 0);
+        }
+    }
+}
