@@ -544,33 +544,32 @@ pub(crate) fn absorb_runs(
     if n < 3 {
         return None;
     }
+    let vertex = |j: usize| if j == 0 { start } else { commands[j - 1].end() };
+    let mut dirs: Vec<Option<(Vec2, Vec2)>> = (0..n)
+        .map(|j| directions(vertex(j), &commands[j]))
+        .collect();
     // The path starts at its sharpest corner, which no run crosses anyway (when it is
-    // closed by its last command, not by `Z` alone).
+    // closed by its last command, not by `Z` alone; each command keeps its start, so its
+    // directions stay).
     let closed = commands[n - 1].end() == start;
-    let (start, commands) = if !closed {
-        (start, commands.to_vec())
-    } else {
-        let vertex = |j: usize| if j == 0 { start } else { commands[j - 1].end() };
-        let dirs: Vec<Option<(Vec2, Vec2)>> = (0..n)
-            .map(|j| directions(vertex(j), &commands[j]))
-            .collect();
+    let sharpest = if closed {
         let turn = |j: usize| match (dirs[(j + n - 1) % n], dirs[j]) {
             (Some((_, inc)), Some((out, _))) => inc.dot(out),
             _ => 1.0,
         };
-        let sharpest = (0..n)
+        (0..n)
             .min_by(|&i, &k| turn(i).total_cmp(&turn(k)))
-            .unwrap_or(0);
-        let mut rotated = commands[sharpest..].to_vec();
-        rotated.extend_from_slice(&commands[..sharpest]);
-        (vertex(sharpest), rotated)
+            .unwrap_or(0)
+    } else {
+        0
     };
+    let start = vertex(sharpest);
+    let mut commands = commands.to_vec();
+    commands.rotate_left(sharpest);
+    dirs.rotate_left(sharpest);
     let commands = &commands[..];
     let snap = Builder::new(grid);
     let vertex = |j: usize| if j == 0 { start } else { commands[j - 1].end() };
-    let dirs: Vec<Option<(Vec2, Vec2)>> = (0..n)
-        .map(|j| directions(vertex(j), &commands[j]))
-        .collect();
     let cos_max = MAX_TURN_DEGREES.to_radians().cos();
     let mut out = Vec::with_capacity(n);
     let mut j = 0;

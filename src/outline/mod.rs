@@ -154,8 +154,14 @@ pub(crate) const ROBUST_SHIFT: f64 = 1.0 / 64.0;
 
 /// The whole contour along its cracks.
 fn cracks_path(points: &[crate::pixel::Pixel]) -> ContourPath {
+    cracks_path_through(&crack_polyline(points, 0, points.len().saturating_sub(1)))
+}
+
+/// The whole contour along its cracks, from its crack corners `polyline`
+/// ([`crack_polyline`]).
+fn cracks_path_through(polyline: &[kurbo::Point]) -> ContourPath {
     let mut b = Builder::new(0);
-    b.polyline(&crack_polyline(points, 0, points.len().saturating_sub(1)));
+    b.polyline(polyline);
     let (start, commands) = b.into_commands();
     ContourPath {
         start: start.unwrap_or_default(),
@@ -214,7 +220,8 @@ pub fn contour_path(
         // And runs along gentle turns become single cubics (the line model stays straight).
         let n = contour.points.len();
         if n > 1 && basis.dim() > crate::model::Model::Line.basis().dim() {
-            let cracks = Cracks::new(&crack_polyline(&contour.points, 0, n - 1));
+            let polyline = crack_polyline(&contour.points, 0, n - 1);
+            let cracks = Cracks::new(&polyline);
             if let Some(absorbed) = absorb_runs(
                 path.start,
                 &path.commands,
@@ -226,7 +233,7 @@ pub fn contour_path(
                 // Each run's loop paints nothing, but the whole path is checked as a contour
                 // is: tiny-skia cuts curves at their extrema in `f32`, whose rounding depends
                 // on the origin (one pixel of 24 random ellipses in a test).
-                let c = cracks_path(&contour.points);
+                let c = cracks_path_through(&polyline);
                 let reference = Reference::new(c.start, &c.commands);
                 if misplaced_anywhere(&reference, &reference, absorbed.0, &absorbed.1, opts)
                     .is_empty()
