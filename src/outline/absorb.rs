@@ -23,18 +23,22 @@
 //! and kept only where it changes no pixel, as [`super::smooth`]'s crossing cubics are: the
 //! loop from the cubic back along the run paints nothing, also moved by 1/64 px, in
 //! Chromium's tiles, finely flattened, and with the control points moved by 1/32 px (Skia's
-//! fixed point); its chord estimate is clear of the bounds where the renderer would cut it
-//! into a different number of chords, and it does not loop. Runs turn by at most
+//! fixed point); its chord estimate, and those of the parts the renderers cut it into (at
+//! its extrema and at the sides of Chromium's tiles, see [`super::chops`]), are clear of
+//! the bounds where the renderer would draw a different number of chords, and it does not
+//! loop. Runs turn by at most
 //! [`super::smooth::MAX_TURN_DEGREES`] at each vertex, so no corner of the shape is rounded,
 //! and the path is first made to start at its sharpest corner (runs do not wrap round its
 //! start). From each command on, runs are fitted doubling their length while they fit, then
 //! halving the gap to the first that does not; the longest that fit are checked in the
-//! renderer first.
+//! renderer first, then shorter ones. A fit is refitted until it is within every tolerance
+//! and drawn in the chords it was fitted with, at most [`FIT_ROUNDS`] times.
 
 use super::builder::Builder;
+use super::chops::drawn_parts;
 use super::render_check::{loop_paints_nothing, EdgeClipping};
 use super::smooth::{chord_estimate, MAX_TURN_DEGREES};
-use super::tiles::clear_of_tile_cuts;
+use super::tiles::{cutting_clips, loop_paints_nothing_in_tiles_moved};
 use crate::curve::PathCommand;
 use kurbo::{CubicBez, ParamCurve, ParamCurveDeriv, Point, Vec2};
 use std::collections::HashMap;
@@ -47,9 +51,21 @@ const MAX_RUN: usize = 8;
 /// samples, conic: 7 811 drawing commands checking one, 7 639 checking three).
 const MAX_CHECKED: usize = 3;
 
+/// Runs fitted from one command on after the search, shorter than the longest that fit,
+/// when those change pixels (27 shared samples, conic: 8 643 commands without, 8 621 with
+/// two).
+const MAX_REFITS: usize = 2;
+
 /// How far (1/64 px) a cubic's chord estimate must stay from a bound where the renderer
 /// changes its number of chords: Skia rounds the control points a little differently.
 const CHORD_MARGIN: i64 = 8;
+
+/// How far (1/64 px) the chord estimate of a part of a cubic, cut at an extremum or a
+/// clip, must stay from a bound of [`chord_shift`]: the renderers compute the cut in
+/// different floating point (the part that cost 2 pixels in Chromium, sil_kangaroo, was at
+/// the bound). A smaller margin than the whole cubic's [`CHORD_MARGIN`]: 27 shared samples,
+/// conic, 8 621 commands with 2, 8 688 with 8.
+const PART_MARGIN: i64 = 2;
 
 /// Commands shorter than this (px) from end to end have no direction of their own: the turn
 /// across them is measured between their neighbours.
@@ -71,8 +87,8 @@ fn chord_shift(d: i64) -> u32 {
 }
 
 /// Whether `d` lies at least [`CHORD_MARGIN`] from a bound of [`chord_shift`].
-fn clear_of_bounds(d: i64) -> bool {
-    chord_shift(d - CHORD_MARGIN) == chord_shift(d + CHORD_MARGIN)
+fn clear_of_bounds(d: i64, margin: i64) -> bool {
+    chord_shift(d - margin) == chord_shift(d + margin)
 }
 
 /// The Bernstein weights of `A, P1, P2, E` at `t`.
@@ -452,13 +468,19 @@ fn fitted_cubic(
         if worst > GIVE_UP && round + 1 < FIT_ROUNDS {
             return None;
         }
+        // Settled: within every tolerance, and drawn in the chords it was fitted with.
+        if worst <= MAX_WORST
+            && 1u32 << chord_shift(chord_estimate(a, control[0], control[1], e)) == chords
+        {
+            break;
+        }
     }
     if worst > MAX_WORST {
         return None;
     }
     let [p1, p2] = [snap.snap(control[0]), snap.snap(control[1])];
     let d = chord_estimate(a, p1, p2, e);
-    if 1u32 << chord_shift(d) != chords || !clear_of_bounds(d) {
+    if 1u32 << chord_shift(d) != chords || !clear_of_bounds(d, CHORD_MARGIN) {
         return None;
     }
     // Control points ahead of the ends along the chord, within its reach: the cubic does not
@@ -479,8 +501,10 @@ fn fitted_cubic(
 /// renderers that cut curves a little differently from tiny-skia.
 const MAX_WORST: f64 = 1.0;
 
-/// Rounds of [`fitted_cubic`]'s fit after the first (27 shared samples, conic: 7 724
-/// drawing commands after two, 7 639 after three).
+/// Rounds of [`fitted_cubic`]'s fit after the first, at most: a fit within every tolerance
+/// whose chord count stays is not refitted (27 shared samples, conic, with the runs checked
+/// shorter: 8 715 commands after two rounds, 8 621 after three, 8 594 after four for 4%
+/// more instructions; refitting settled fits too gave 8 752).
 const FIT_ROUNDS: usize = 3;
 
 /// A fit this far beyond its tolerances before its last round is given up (saves 2% of the
@@ -499,22 +523,36 @@ fn changes_nothing(
     let PathCommand::Cubic(p1, p2, e) = cubic else {
         return false;
     };
-    // Not across the lines where Chromium's tiles cut paths: Skia cuts the curve there and
-    // draws each part in chords of its own, which tiny-skia's clipped fill in the tiles does
-    // not always match (2 pixels of the 27 shared samples in Chromium, conic, where the
-    // loop painted nothing in tiny-skia's tiles, also moved by 1/64 px each way).
+    // Every part the renderers draw in chords of its own has a chord estimate clear of the
+    // bounds where their number changes (see `chops`): cut at its extrema, and where the
+    // document's edge or one of Chromium's tiles clips it.
+    let bez = CubicBez::new(a, p1, p2, e);
+    let clear = |parts: Vec<CubicBez>, origin: Point| {
+        let o = origin.to_vec2();
+        parts.iter().all(|q| {
+            clear_of_bounds(
+                chord_estimate(q.p0 - o, q.p1 - o, q.p2 - o, q.p3 - o),
+                PART_MARGIN,
+            )
+        })
+    };
     let bounds = kurbo::Rect::from_points(a, e).union_pt(p1).union_pt(p2);
-    if !clear_of_tile_cuts(
-        bounds.x0.floor() as i64,
-        bounds.y0.floor() as i64,
-        bounds.x1.ceil() as i64,
-        bounds.y1.ceil() as i64,
-        canvas,
-        0,
-    ) {
+    let clips = cutting_clips(bounds, canvas);
+    if !clear(drawn_parts(bez, None), Point::ZERO)
+        || (clipping != EdgeClipping::Never
+            && !clear(drawn_parts(bez, canvas.or(Some(bounds))), Point::ZERO))
+        || !clips
+            .iter()
+            .all(|clip| clear(drawn_parts(bez, Some(*clip)), clip.origin()))
+    {
         return false;
     }
-    loop_paints_nothing(a, &difference_loop(a, cubic, cmds), clipping, canvas, true)
+    // Then the pixels: the loop from the cubic back along the run paints nothing, also
+    // moved (up and down too where a tile cuts the cubic), and with the control points
+    // nudged.
+    let lp = difference_loop(a, cubic, cmds);
+    loop_paints_nothing(a, &lp, clipping, canvas, true)
+        && (clips.is_empty() || loop_paints_nothing_in_tiles_moved(a, &lp, canvas))
         && [
             (NUDGE, NUDGE),
             (NUDGE, -NUDGE),
@@ -631,14 +669,35 @@ pub(crate) fn absorb_runs(
             }
             fitting.sort_by_key(|f| f.0);
         }
-        let best = fitting
-            .iter()
-            .rev()
-            .take(MAX_CHECKED)
-            .find(|&&(len, c)| {
-                changes_nothing(vertex(j), c, &commands[j..j + len], clipping, canvas)
-            })
-            .copied();
+        // The longest first; where they change pixels, shorter runs are fitted too (at most
+        // [`MAX_REFITS`] more) and checked, down to two commands, [`MAX_CHECKED`] in all.
+        let mut best = None;
+        if let Some(&(longest, _)) = fitting.last() {
+            let mut fitted: Vec<usize> = fitting.iter().map(|f| f.0).collect();
+            let (mut refits, mut checks) = (MAX_REFITS, MAX_CHECKED);
+            for len in (2..=longest).rev() {
+                if checks == 0 {
+                    break;
+                }
+                let cubic = match fitting.iter().find(|f| f.0 == len) {
+                    Some(f) => Some(f.1),
+                    None if refits > 0 && !fitted.contains(&len) => {
+                        refits -= 1;
+                        fitted.push(len);
+                        try_len(len, &mut fitting);
+                        fitting.last().filter(|f| f.0 == len).map(|f| f.1)
+                    }
+                    None => None,
+                };
+                if let Some(c) = cubic {
+                    checks -= 1;
+                    if changes_nothing(vertex(j), c, &commands[j..j + len], clipping, canvas) {
+                        best = Some((len, c));
+                        break;
+                    }
+                }
+            }
+        }
         match best {
             Some((len, c)) => {
                 out.push(c);
@@ -684,7 +743,11 @@ mod tests {
         ] {
             assert_eq!(chord_shift(d), shift, "estimate {d}");
         }
-        assert!(!clear_of_bounds(44) && !clear_of_bounds(245) && clear_of_bounds(100));
+        assert!(
+            !clear_of_bounds(44, CHORD_MARGIN)
+                && !clear_of_bounds(245, CHORD_MARGIN)
+                && clear_of_bounds(100, CHORD_MARGIN)
+        );
     }
 
     /// A mask of the ellipse with half-axes `rx`, `ry` turned by `angle`, centred at `c`.

@@ -39,6 +39,7 @@ mod band_cells;
 mod band_path;
 mod band_polygon;
 mod builder;
+mod chops;
 mod coarse;
 mod corners;
 mod cracks;
