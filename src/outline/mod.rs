@@ -158,6 +158,40 @@ fn cracks_path(points: &[crate::pixel::Pixel]) -> ContourPath {
     cracks_path_through(&crack_polyline(points, 0, points.len().saturating_sub(1)))
 }
 
+/// What a contour's drawings are checked against: its crack polygon, and the coarse
+/// stand-in filled in its place where it has one (see [`coarse`]).
+struct References {
+    /// The crack polygon.
+    cracks: Reference,
+    /// The coarse stand-in, filled by tiny-skia exactly like the cracks with far fewer
+    /// edges to set up in every fill.
+    coarse: Option<Reference>,
+}
+
+impl References {
+    /// The references of the contour through the crack corners `polyline`.
+    fn new(polyline: &[kurbo::Point]) -> References {
+        let c = cracks_path_through(polyline);
+        let cracks = Reference::new(c.start, &c.commands);
+        let coarse = (c.commands.len() >= MIN_COARSE_CRACKS)
+            .then(|| coarse_cracks(c.start, &c.commands))
+            .flatten()
+            .map(|(start, coarse)| {
+                debug_assert!(
+                    misplaced_pixels(&cracks, start, &coarse, EdgeClipping::Never, None).is_empty(),
+                    "the coarse crack polygon fills differently"
+                );
+                Reference::new(start, &coarse)
+            });
+        References { cracks, coarse }
+    }
+
+    /// The reference to fill: the coarse stand-in, else the cracks.
+    fn fill(&self) -> &Reference {
+        self.coarse.as_ref().unwrap_or(&self.cracks)
+    }
+}
+
 /// The whole contour along its cracks, from its crack corners `polyline`
 /// ([`crack_polyline`]).
 fn cracks_path_through(polyline: &[kurbo::Point]) -> ContourPath {
@@ -199,7 +233,8 @@ pub fn contour_path(
     basis: &dyn Basis,
     opts: &OutlineOptions,
 ) -> ContourPath {
-    let mut path = exact_path(contour, pieces, basis, opts);
+    let mut references = None;
+    let mut path = exact_path(contour, pieces, basis, opts, &mut references);
     // Where one-pixel features leave a staircase, its corners are cut (no pixel changes).
     if !opts.square_corners {
         if let Some((start, commands)) =
@@ -234,9 +269,8 @@ pub fn contour_path(
                 // Each run's loop paints nothing, but the whole path is checked as a contour
                 // is: tiny-skia cuts curves at their extrema in `f32`, whose rounding depends
                 // on the origin (one pixel of 24 random ellipses in a test).
-                let c = cracks_path_through(&polyline);
-                let reference = Reference::new(c.start, &c.commands);
-                if misplaced_anywhere(&reference, &reference, absorbed.0, &absorbed.1, opts)
+                let refs = references.get_or_insert_with(|| References::new(&polyline));
+                if misplaced_anywhere(refs.fill(), &refs.cracks, absorbed.0, &absorbed.1, opts)
                     .is_empty()
                 {
                     (path.start, path.commands) = absorbed;
@@ -306,11 +340,14 @@ fn misplaced_anywhere(
 }
 
 /// [`contour_path`] before the corners of its staircases are cut.
+/// `references` (the caller's, `None` at first) holds the contour's [`References`] once a
+/// drawing has been checked against them.
 fn exact_path(
     contour: &Contour,
     pieces: &[Piece],
     basis: &dyn Basis,
     opts: &OutlineOptions,
+    references: &mut Option<References>,
 ) -> ContourPath {
     let points = &contour.points;
     let n = points.len();
@@ -364,8 +401,6 @@ fn exact_path(
     let mut cracked = vec![false; stretches.len()];
     let mut keep_bridge = vec![false; stretches.len()];
     let mut memo = Memo::default();
-    // The contour's crack polygon, and the coarse stand-in filled in its place (see below).
-    let mut references: Option<(Reference, Option<Reference>)> = None;
     for _ in 0..MAX_ROUNDS {
         let built = build(
             points,
@@ -391,25 +426,9 @@ fn exact_path(
             if stretches.iter().all(|s| s.drawing == Drawing::Cracks) && built.failed.is_empty() {
                 return finish(path, &stretches, fallbacks);
             }
-            let (cracks, coarse) = references.get_or_insert_with(|| {
-                let c = cracks_path(points);
-                let cracks = Reference::new(c.start, &c.commands);
-                // The coarse stand-in, filled by tiny-skia exactly like the cracks (see
-                // `coarse`), with far fewer edges to set up in every fill.
-                let coarse = (c.commands.len() >= MIN_COARSE_CRACKS)
-                    .then(|| coarse_cracks(c.start, &c.commands))
-                    .flatten()
-                    .map(|(start, coarse)| {
-                        debug_assert!(
-                            misplaced_pixels(&cracks, start, &coarse, EdgeClipping::Never, None)
-                                .is_empty(),
-                            "the coarse crack polygon fills differently"
-                        );
-                        Reference::new(start, &coarse)
-                    });
-                (cracks, coarse)
-            });
-            let reference = coarse.as_ref().unwrap_or(cracks);
+            let refs = references
+                .get_or_insert_with(|| References::new(&crack_polyline(points, 0, n - 1)));
+            let (reference, cracks) = (refs.fill(), &refs.cracks);
             let wrong = misplaced_anywhere(reference, cracks, path.start, &path.commands, opts);
             if wrong.is_empty() {
                 let mut path = path;

@@ -150,6 +150,7 @@ fn bad_pieces_fall_back_to_cracks() {
         &d.pieces[0],
         &basis,
         &OutlineOptions::default(),
+        &mut None,
     );
     assert_eq!(cp.fallbacks.invalid_pieces, 1);
     assert!(exact_by_construction(&cp));
