@@ -86,7 +86,7 @@ fn chord_shift(d: i64) -> u32 {
     (((64 - dist.leading_zeros()) >> 1) + 1).min(6)
 }
 
-/// Whether `d` lies at least [`CHORD_MARGIN`] from a bound of [`chord_shift`].
+/// Whether `d` lies at least `margin` from a bound of [`chord_shift`].
 fn clear_of_bounds(d: i64, margin: i64) -> bool {
     chord_shift(d - margin) == chord_shift(d + margin)
 }
@@ -630,28 +630,27 @@ pub(crate) fn absorb_runs(
             }
             limit += 1;
         }
-        // The runs from `j` that fit, (length, cubic), found by doubling the length while
-        // runs fit, then halving the gap to the first that does not (a longer run rarely fits
-        // where a shorter one does not).
-        let mut fitting: Vec<(usize, PathCommand)> = Vec::new();
-        let try_len = |len: usize, fitting: &mut Vec<(usize, PathCommand)>| {
+        // The runs from `j` tried, (length, cubic if it fits), found by doubling the length
+        // while runs fit, then halving the gap to the first that does not (a longer run
+        // rarely fits where a shorter one does not).
+        let mut tried: Vec<(usize, Option<PathCommand>)> = Vec::new();
+        let try_len = |len: usize, tried: &mut Vec<(usize, Option<PathCommand>)>| {
             let c = (dirs[j..j + len].iter().any(Option::is_some))
                 .then(|| fitted_cubic(vertex(j), &commands[j..j + len], cracks, &snap))
                 .flatten();
-            if let Some(c) = c {
-                fitting.push((len, c));
-            }
-            c.is_some()
+            tried.push((len, c));
+            c
         };
         if limit >= 2 {
             // `lo` fits (or is 1), `hi` does not (or exceeds the limit).
             let (mut lo, mut hi) = (1, limit + 1);
             let mut len = 2;
             while len <= limit {
-                if try_len(len, &mut fitting)
-                    || (len == 2 && limit >= 3 && try_len(3, &mut fitting))
-                {
-                    lo = fitting.last().map_or(lo, |f| f.0);
+                let fits = try_len(len, &mut tried).map(|_| len).or_else(|| {
+                    (len == 2 && limit >= 3 && try_len(3, &mut tried).is_some()).then_some(3)
+                });
+                if let Some(fit) = fits {
+                    lo = fit;
                     len = 2 * lo;
                 } else {
                     hi = len;
@@ -661,31 +660,29 @@ pub(crate) fn absorb_runs(
             hi = hi.min(limit + 1);
             while lo >= 2 && hi - lo > 1 {
                 let mid = (lo + hi) / 2;
-                if try_len(mid, &mut fitting) {
+                if try_len(mid, &mut tried).is_some() {
                     lo = mid;
                 } else {
                     hi = mid;
                 }
             }
-            fitting.sort_by_key(|f| f.0);
         }
-        // The longest first; where they change pixels, shorter runs are fitted too (at most
-        // [`MAX_REFITS`] more) and checked, down to two commands, [`MAX_CHECKED`] in all.
+        // The longest first; where they change pixels, shorter runs not tried yet are fitted
+        // too (at most [`MAX_REFITS`] more) and checked, down to two commands,
+        // [`MAX_CHECKED`] in all.
         let mut best = None;
-        if let Some(&(longest, _)) = fitting.last() {
-            let mut fitted: Vec<usize> = fitting.iter().map(|f| f.0).collect();
+        let longest = tried.iter().filter(|t| t.1.is_some()).map(|t| t.0).max();
+        if let Some(longest) = longest {
             let (mut refits, mut checks) = (MAX_REFITS, MAX_CHECKED);
             for len in (2..=longest).rev() {
                 if checks == 0 {
                     break;
                 }
-                let cubic = match fitting.iter().find(|f| f.0 == len) {
-                    Some(f) => Some(f.1),
-                    None if refits > 0 && !fitted.contains(&len) => {
+                let cubic = match tried.iter().find(|t| t.0 == len) {
+                    Some(&(_, c)) => c,
+                    None if refits > 0 => {
                         refits -= 1;
-                        fitted.push(len);
-                        try_len(len, &mut fitting);
-                        fitting.last().filter(|f| f.0 == len).map(|f| f.1)
+                        try_len(len, &mut tried)
                     }
                     None => None,
                 };

@@ -87,6 +87,14 @@ pub(crate) fn one_tile(width: i64, height: i64) -> bool {
     tile_count(width, size.width) == 1 && tile_count(height, size.height) == 1
 }
 
+/// The whole pixels of the page `canvas` and the size of its tiles, when Chromium draws it
+/// in several; `None` without a canvas, or when its one tile's clip is the page's.
+fn tiled_page(canvas: Option<Rect>) -> Option<(Window, TileSize)> {
+    let page = Window::inside(canvas?);
+    let (w, h) = (page.x1 - page.x0, page.y1 - page.y0);
+    (!one_tile(w, h)).then(|| (page, TileSize::of_page(w, h)))
+}
+
 /// How many tiles of `size` pixels (two of them borders shared with the neighbours) cover
 /// `end` pixels, as Chromium's `TilingData`: the last tile also shows its far border pixel,
 /// so a page of `(size − 2) k + 2` pixels has `k` tiles, not a last one of two pixels.
@@ -135,16 +143,10 @@ pub(crate) fn misplaced_in_tiles(
     commands: &[PathCommand],
     canvas: Option<Rect>,
 ) -> Vec<Pixel> {
-    let Some(canvas) = canvas else {
+    let Some((page, size)) = tiled_page(canvas) else {
         return Vec::new();
     };
-    let page = Window::inside(canvas);
     let (w, h) = (page.x1 - page.x0, page.y1 - page.y0);
-    if one_tile(w, h) {
-        // One tile, whose clip is the page's.
-        return Vec::new();
-    }
-    let size = TileSize::of_page(w, h);
     let round = Window::round(reference, start, commands);
     let Some(win) = round.within(page) else {
         return Vec::new();
@@ -204,15 +206,10 @@ pub(crate) fn misplaced_in_tiles(
 /// them is drawn there in the parts [`super::chops::drawn_parts`] lists. Empty without a
 /// canvas or on a page drawn as one tile.
 pub(crate) fn cutting_clips(bounds: Rect, canvas: Option<Rect>) -> Vec<Rect> {
-    let Some(canvas) = canvas else {
+    let Some((page, size)) = tiled_page(canvas) else {
         return Vec::new();
     };
-    let page = Window::inside(canvas);
     let (w, h) = (page.x1 - page.x0, page.y1 - page.y0);
-    if one_tile(w, h) {
-        return Vec::new();
-    }
-    let size = TileSize::of_page(w, h);
     let (ox, oy) = (page.x0, page.y0);
     let (x0, y0) = (bounds.x0.floor() as i64 - ox, bounds.y0.floor() as i64 - oy);
     let (x1, y1) = (bounds.x1.ceil() as i64 - ox, bounds.y1.ceil() as i64 - oy);
