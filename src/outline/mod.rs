@@ -340,6 +340,7 @@ fn misplaced_anywhere(
 }
 
 /// [`contour_path`] before the corners of its staircases are cut.
+///
 /// `references` (the caller's, `None` at first) holds the contour's [`References`] once a
 /// drawing has been checked against them.
 fn exact_path(
