@@ -817,7 +817,7 @@ mod tests {
             ..OutlineOptions::default()
         };
         let cp = contour_path(c, &d.pieces[0], &basis, &plain);
-        let merged = merge_lines(cp.start, &cp.commands, None).unwrap_or(cp.commands.clone());
+        let merged = merge_lines(cp.start, &cp.commands, None, 4).unwrap_or(cp.commands.clone());
         let n = c.points.len();
         let cracks = Cracks::new(&super::super::crack_polyline(&c.points, 0, n - 1));
         let (start, absorbed) =

@@ -8,7 +8,10 @@
 //! the path changes by that loop's winding, edge by edge (tiny-skia and Skia rasterize each
 //! line edge by itself), so a loop that paints no pixel centre changes no pixel. A chain
 //! `u → v₁ → … → vₖ → w` becomes `u → w` the same way, its loop going back through every
-//! dropped vertex. The loop is checked as the contour is: filled by tiny-skia in a window of
+//! dropped vertex. A short bridge `v₁ → v₂` between two lines `u → v₁` and `v₂ → w` (where
+//! two pieces' polygons meet off each other's line) becomes the corner `x` where the lines
+//! cross, when the loop `u → x → w → v₂ → v₁ → u` paints nothing. The loop is checked as the
+//! contour is: filled by tiny-skia in a window of
 //! its own, also moved by [`super::ROBUST_SHIFT`] sideways, and in Chromium's tiles
 //! ([`super::tiles`]). Lines only: they are drawn the same at any origin (see
 //! [`super::render_check`]), curves are not.
@@ -22,7 +25,8 @@ use kurbo::Point;
 const MAX_DROPPED: usize = 8;
 
 /// The closed path `M start commands Z` with vertices between consecutive lines dropped
-/// where the renderer draws the same pixels (see the module documentation), in passes
+/// and short bridges between lines collapsed to corners (on the `grid`) where the renderer
+/// draws the same pixels (see the module documentation), in passes
 /// until none goes: a merge makes new neighbours, which the next pass tries (27 shared
 /// samples, conic: 11 339 commands after one pass, 11 123 after two, no change after).
 /// The start vertex stays (dropping it too saved 4 commands there). Returns `None` if no
@@ -31,27 +35,127 @@ pub(crate) fn merge_lines(
     start: Point,
     commands: &[PathCommand],
     canvas: Option<kurbo::Rect>,
+    grid: u8,
 ) -> Option<Vec<PathCommand>> {
     let mut current = commands.to_vec();
     // Lines made by the last pass; the first pass tries every pair.
     let mut fresh = vec![true; current.len()];
     let mut any = false;
     for _ in 0..MAX_PASSES {
-        let Some((next, next_fresh)) = merge_pass(start, &current, &fresh, canvas) else {
+        let mut changed = false;
+        if let Some((next, next_fresh)) = merge_pass(start, &current, &fresh, canvas) {
+            (current, fresh) = (next, next_fresh);
+            changed = true;
+        }
+        if let Some((next, next_fresh)) = collapse_bridges(start, &current, canvas, grid) {
+            (current, fresh) = (next, next_fresh);
+            changed = true;
+        }
+        if !changed {
             break;
-        };
-        current = next;
-        fresh = next_fresh;
+        }
         any = true;
     }
     any.then_some(current)
+}
+
+/// Longest bridge (px) [`collapse_bridges`] replaces by a corner.
+const MAX_BRIDGE: f64 = 1.5;
+
+/// One pass of [`merge_lines`] over short bridges between lines: where two lines
+/// `u → v₁` and `v₂ → w` are joined by a short line `v₁ → v₂` (where two pieces' polygons
+/// met off each other's line: a notch of a pixel or less), the bridge goes and both lines
+/// run on to the point `x` where they cross, snapped to the `grid`, when the loop
+/// `u → x → w → v₂ → v₁ → u` paints nothing. Returns the commands and which of them changed,
+/// or `None` if no bridge went.
+fn collapse_bridges(
+    start: Point,
+    commands: &[PathCommand],
+    canvas: Option<kurbo::Rect>,
+    grid: u8,
+) -> Option<(Vec<PathCommand>, Vec<bool>)> {
+    let n = commands.len();
+    if n <= MIN_COMMANDS {
+        return None;
+    }
+    let snap = super::builder::Builder::new(grid);
+    let mut out: Vec<PathCommand> = Vec::with_capacity(n);
+    let mut out_fresh: Vec<bool> = Vec::with_capacity(n);
+    let mut removed = 0;
+    let mut pen = start;
+    let mut i = 0;
+    while i < n {
+        let c = commands[i];
+        // `c` is the line `u → v₁` (u = pen), then the bridge and the line `v₂ → w`.
+        let corner = match (c, commands.get(i + 1), commands.get(i + 2)) {
+            (PathCommand::Line(v1), Some(&PathCommand::Line(v2)), Some(&PathCommand::Line(w)))
+                if n - removed > MIN_COMMANDS =>
+            {
+                bridge_corner(pen, v1, v2, w, &snap).filter(|&x| {
+                    let lp = [
+                        PathCommand::Line(x),
+                        PathCommand::Line(w),
+                        PathCommand::Line(v2),
+                        PathCommand::Line(v1),
+                        PathCommand::Line(pen),
+                    ];
+                    loop_paints_nothing(pen, &lp, EdgeClipping::Never, canvas, true)
+                })
+            }
+            _ => None,
+        };
+        match corner {
+            Some(x) => {
+                out.push(PathCommand::Line(x));
+                out.push(commands[i + 2]);
+                out_fresh.extend([true, true]);
+                removed += 1;
+                pen = commands[i + 2].end();
+                i += 3;
+            }
+            None => {
+                out.push(c);
+                out_fresh.push(false);
+                pen = c.end();
+                i += 1;
+            }
+        }
+    }
+    (removed > 0).then_some((out, out_fresh))
+}
+
+/// Where the lines `u → v₁` and `v₂ → w` cross, snapped, when `v₁ → v₂` is a short bridge
+/// between them (at most [`MAX_BRIDGE`] px, both lines longer) and the crossing lies within
+/// the bridge's length of it, ahead of `u` and before `w`. `None` otherwise.
+fn bridge_corner(
+    u: Point,
+    v1: Point,
+    v2: Point,
+    w: Point,
+    snap: &super::builder::Builder,
+) -> Option<Point> {
+    let (a, b) = (v1 - u, w - v2);
+    let bridge = (v2 - v1).hypot();
+    if bridge > MAX_BRIDGE || a.hypot() <= bridge || b.hypot() <= bridge {
+        return None;
+    }
+    // u + s a = v₂ + t b.
+    let den = a.cross(b);
+    if den.abs() < 1e-9 * a.hypot() * b.hypot() {
+        return None;
+    }
+    let s = (v2 - u).cross(b) / den;
+    let x = snap.snap(u + a * s);
+    let near = (x - v1.midpoint(v2)).hypot() <= 2.0 * bridge;
+    (near && (x - u).dot(a) > 0.0 && (w - x).dot(b) > 0.0 && x != u && x != w).then_some(x)
 }
 
 /// Fewest commands a path is merged down to: a lone pixel keeps its diamond (four lines
 /// through the middles of its sides, see [`super::corners`]), not a lopsided triangle.
 const MIN_COMMANDS: usize = 4;
 
-/// Most passes of [`merge_lines`] (two sufficed on every shared sample).
+/// Most passes of [`merge_lines`] (two sufficed on every shared sample before bridges were
+/// collapsed too).
 const MAX_PASSES: usize = 4;
 
 /// One pass of [`merge_lines`] from the first command on: each line is merged into the line
@@ -151,7 +255,7 @@ mod tests {
             let start = pts[0];
             let cmds: Vec<PathCommand> =
                 pts[1..].iter().chain([&start]).map(|&p| PathCommand::Line(p)).collect();
-            if let Some(merged) = merge_lines(start, &cmds, None) {
+            if let Some(merged) = merge_lines(start, &cmds, None, 4) {
                 prop_assert!(merged.len() < cmds.len());
                 // Unmoved and moved by ±1/64 px, both the same way.
                 for d in [0.0, ROBUST_SHIFT, -ROBUST_SHIFT] {
@@ -178,6 +282,40 @@ mod tests {
     }
 
     #[test]
+    fn a_bridge_becomes_the_corner_where_no_pixel_changes() {
+        // A square whose top-right corner is cut by a short bridge: both sides run on to
+        // the corner, the bridge's triangle holding no pixel centre.
+        let start = Point::new(1.0, 1.0);
+        let bridged = [
+            line(8.5, 1.0),
+            line(9.0, 1.5),
+            line(9.0, 9.0),
+            line(1.0, 9.0),
+            line(1.0, 1.0),
+        ];
+        let (out, fresh) = collapse_bridges(start, &bridged, None, 4).expect("a corner");
+        assert_eq!(
+            out,
+            vec![
+                line(9.0, 1.0),
+                line(9.0, 9.0),
+                line(1.0, 9.0),
+                line(1.0, 1.0)
+            ]
+        );
+        assert_eq!(fresh, vec![true, true, false, false]);
+        // A longer cut whose triangle holds the centre (8.5, 1.5) stays.
+        let cut = [
+            line(7.5, 1.0),
+            line(9.0, 2.5),
+            line(9.0, 9.0),
+            line(1.0, 9.0),
+            line(1.0, 1.0),
+        ];
+        assert_eq!(collapse_bridges(start, &cut, None, 4), None);
+    }
+
+    #[test]
     fn collinear_and_clear_vertices_go() {
         // A square drawn with extra vertices on its top, one bent by 0.25 px between pixel
         // centres: the bend changes no pixel, so it goes too.
@@ -190,7 +328,7 @@ mod tests {
             line(5.0, 9.0),
             line(1.0, 9.0),
         ];
-        let out = merge_lines(start, &cmds, None).expect("vertices to drop");
+        let out = merge_lines(start, &cmds, None, 4).expect("vertices to drop");
         // Two go; the bottom's middle vertex stays, as a path keeps four commands.
         assert_eq!(
             out,
@@ -214,7 +352,7 @@ mod tests {
             line(9.0, 9.0),
             line(1.0, 9.0),
         ];
-        assert_eq!(merge_lines(start, &cmds, None), None);
+        assert_eq!(merge_lines(start, &cmds, None, 4), None);
     }
 
     #[test]
@@ -229,6 +367,6 @@ mod tests {
             line(9.0, 9.0),
             line(1.0, 9.0),
         ];
-        assert_eq!(merge_lines(start, &cmds, None), None);
+        assert_eq!(merge_lines(start, &cmds, None, 4), None);
     }
 }

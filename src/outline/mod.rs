@@ -246,7 +246,12 @@ pub fn contour_path(
     }
     // Then vertices between lines that change no pixel go (the cut corners' too).
     if opts.merge_lines {
-        if let Some(merged) = merge_lines(path.start, &path.commands, opts.canvas) {
+        if let Some(merged) = merge_lines(
+            path.start,
+            &path.commands,
+            opts.canvas,
+            opts.grid.min(MAX_GRID),
+        ) {
             // A merge may join a cut corner's chamfer to its neighbour and bring a step of a
             // staircase back: such merges are not kept.
             if !has_staircase(path.start, &merged) || has_staircase(path.start, &path.commands) {
