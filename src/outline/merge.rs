@@ -9,8 +9,9 @@
 //! line edge by itself), so a loop that paints no pixel centre changes no pixel. A chain
 //! `u → v₁ → … → vₖ → w` becomes `u → w` the same way, its loop going back through every
 //! dropped vertex. A short bridge `v₁ → v₂` between two lines `u → v₁` and `v₂ → w` (where
-//! two pieces' polygons meet off each other's line) becomes the corner `x` where the lines
-//! cross, when the loop `u → x → w → v₂ → v₁ → u` paints nothing. The loop is checked as the
+//! two pieces' polygons meet off each other's line) becomes one vertex `x` — the corner
+//! where the lines cross, or on a step between parallel edges the step's middle or a foot
+//! of it on either line — when the loop `u → x → w → v₂ → v₁ → u` paints nothing. The loop is checked as the
 //! contour is: filled by tiny-skia in a window of
 //! its own, also moved by [`super::ROBUST_SHIFT`] sideways, and in Chromium's tiles
 //! ([`super::tiles`]). Lines only: they are drawn the same at any origin (see
@@ -65,7 +66,7 @@ const MAX_BRIDGE: f64 = 1.5;
 /// One pass of [`merge_lines`] over short bridges between lines: where two lines
 /// `u → v₁` and `v₂ → w` are joined by a short line `v₁ → v₂` (where two pieces' polygons
 /// met off each other's line: a notch of a pixel or less), the bridge goes and both lines
-/// run on to the point `x` where they cross, snapped to the `grid`, when the loop
+/// run on to one vertex `x` ([`bridge_corners`], snapped to the `grid`), when the loop
 /// `u → x → w → v₂ → v₁ → u` paints nothing. Returns the commands and which of them changed,
 /// or `None` if no bridge went.
 fn collapse_bridges(
@@ -91,16 +92,18 @@ fn collapse_bridges(
             (PathCommand::Line(v1), Some(&PathCommand::Line(v2)), Some(&PathCommand::Line(w)))
                 if n - removed > MIN_COMMANDS =>
             {
-                bridge_corner(pen, v1, v2, w, &snap).filter(|&x| {
-                    let lp = [
-                        PathCommand::Line(x),
-                        PathCommand::Line(w),
-                        PathCommand::Line(v2),
-                        PathCommand::Line(v1),
-                        PathCommand::Line(pen),
-                    ];
-                    loop_paints_nothing(pen, &lp, EdgeClipping::Never, canvas, true)
-                })
+                bridge_corners(pen, v1, v2, w, &snap)
+                    .into_iter()
+                    .find(|&x| {
+                        let lp = [
+                            PathCommand::Line(x),
+                            PathCommand::Line(w),
+                            PathCommand::Line(v2),
+                            PathCommand::Line(v1),
+                            PathCommand::Line(pen),
+                        ];
+                        loop_paints_nothing(pen, &lp, EdgeClipping::Never, canvas, true)
+                    })
             }
             _ => None,
         };
@@ -124,30 +127,40 @@ fn collapse_bridges(
     (removed > 0).then_some((out, out_fresh))
 }
 
-/// Where the lines `u → v₁` and `v₂ → w` cross, snapped, when `v₁ → v₂` is a short bridge
-/// between them (at most [`MAX_BRIDGE`] px, both lines longer) and the crossing lies within
-/// the bridge's length of it, ahead of `u` and before `w`. `None` otherwise.
-fn bridge_corner(
+/// The corners that may replace the short bridge `v₁ → v₂` (at most [`MAX_BRIDGE`] px, both
+/// lines longer) between the lines `u → v₁` and `v₂ → w`, snapped, in the order tried: where
+/// the lines cross, when that lies within twice the bridge's length of it; else, when the
+/// lines run side by side (a step between two parallel edges), the bridge's middle and the
+/// feet of each end on the other line. Each ahead of `u` and before `w`.
+fn bridge_corners(
     u: Point,
     v1: Point,
     v2: Point,
     w: Point,
     snap: &super::builder::Builder,
-) -> Option<Point> {
+) -> Vec<Point> {
     let (a, b) = (v1 - u, w - v2);
     let bridge = (v2 - v1).hypot();
     if bridge > MAX_BRIDGE || a.hypot() <= bridge || b.hypot() <= bridge {
-        return None;
+        return Vec::new();
     }
+    let mut out = Vec::new();
     // u + s a = v₂ + t b.
     let den = a.cross(b);
-    if den.abs() < 1e-9 * a.hypot() * b.hypot() {
-        return None;
+    if den.abs() >= 1e-9 * a.hypot() * b.hypot() {
+        let x = u + a * ((v2 - u).cross(b) / den);
+        if (x - v1.midpoint(v2)).hypot() <= 2.0 * bridge {
+            out.push(x);
+        }
     }
-    let s = (v2 - u).cross(b) / den;
-    let x = snap.snap(u + a * s);
-    let near = (x - v1.midpoint(v2)).hypot() <= 2.0 * bridge;
-    (near && (x - u).dot(a) > 0.0 && (w - x).dot(b) > 0.0 && x != u && x != w).then_some(x)
+    if out.is_empty() && a.dot(b) > 0.0 {
+        let foot = |p: Point, o: Point, d: kurbo::Vec2| o + d * ((p - o).dot(d) / d.hypot2());
+        out.extend([v1.midpoint(v2), foot(v2, u, a), foot(v1, v2, b)]);
+    }
+    out.into_iter()
+        .map(|x| snap.snap(x))
+        .filter(|&x| (x - u).dot(a) > 0.0 && (w - x).dot(b) > 0.0 && x != u && x != w)
+        .collect()
 }
 
 /// Fewest commands a path is merged down to: a lone pixel keeps its diamond (four lines
@@ -282,7 +295,7 @@ mod tests {
     }
 
     #[test]
-    fn a_bridge_becomes_the_corner_where_no_pixel_changes() {
+    fn a_bridge_becomes_one_vertex_where_no_pixel_changes() {
         // A square whose top-right corner is cut by a short bridge: both sides run on to
         // the corner, the bridge's triangle holding no pixel centre.
         let start = Point::new(1.0, 1.0);
@@ -313,6 +326,19 @@ mod tests {
             line(1.0, 1.0),
         ];
         assert_eq!(collapse_bridges(start, &cut, None, 4), None);
+        // A step between two parallel edges, across the row of centres y = 1.5: one vertex
+        // at the step's middle keeps (8.5, 1.5) in and (9.5, 1.5) out.
+        let start = Point::new(1.0, 1.25);
+        let step = [
+            line(9.0, 1.25),
+            line(9.5, 1.75),
+            line(18.0, 1.75),
+            line(18.0, 9.0),
+            line(1.0, 9.0),
+            line(1.0, 1.25),
+        ];
+        let (out, _) = collapse_bridges(start, &step, None, 4).expect("a vertex");
+        assert_eq!(out[..2], [line(9.25, 1.5), line(18.0, 1.75)]);
     }
 
     #[test]
