@@ -11,11 +11,11 @@
 //! dropped vertex. A short bridge `v₁ → v₂` between two lines `u → v₁` and `v₂ → w` (where
 //! two pieces' polygons meet off each other's line) becomes one vertex `x` — the corner
 //! where the lines cross, or on a step between parallel edges the step's middle or a foot
-//! of it on either line — when the loop `u → x → w → v₂ → v₁ → u` paints nothing. The loop is checked as the
-//! contour is: filled by tiny-skia in a window of
-//! its own, also moved by [`super::ROBUST_SHIFT`] sideways, and in Chromium's tiles
-//! ([`super::tiles`]). Lines only: they are drawn the same at any origin (see
-//! [`super::render_check`]), curves are not.
+//! of it on either line — when the loop `u → x → w → v₂ → v₁ → u` paints nothing. The loop
+//! is checked as the contour is: filled by tiny-skia in a window of its own, also moved by
+//! [`super::ROBUST_SHIFT`] sideways, and in Chromium's tiles ([`super::tiles`]). Lines
+//! only: they are drawn the same at any origin (see [`super::render_check`]), curves are
+//! not.
 
 use super::render_check::{loop_paints_nothing, EdgeClipping};
 use crate::curve::PathCommand;
@@ -26,7 +26,7 @@ use kurbo::Point;
 const MAX_DROPPED: usize = 8;
 
 /// The closed path `M start commands Z` with vertices between consecutive lines dropped
-/// and short bridges between lines collapsed to corners (on the `grid`) where the renderer
+/// and short bridges between lines collapsed to one vertex (on the `grid`) where the renderer
 /// draws the same pixels (see the module documentation), in passes
 /// until none goes: a merge makes new neighbours, which the next pass tries (27 shared
 /// samples, conic: 11 339 commands after one pass, 11 123 after two, no change after).
@@ -60,7 +60,7 @@ pub(crate) fn merge_lines(
     any.then_some(current)
 }
 
-/// Longest bridge (px) [`collapse_bridges`] replaces by a corner.
+/// Longest bridge (px) [`collapse_bridges`] replaces by one vertex.
 const MAX_BRIDGE: f64 = 1.5;
 
 /// One pass of [`merge_lines`] over short bridges between lines: where two lines
