@@ -22,6 +22,7 @@ use crate::bitmap::Band;
 use crate::contour::largest_first;
 use crate::curve::PathCommand;
 use crate::decompose::Decomposition;
+use crate::outline::tiles::one_tile;
 use crate::outline::{
     band_contour_path, contour_path, has_staircase, CommandCounts, ContourPath, EdgeClipping,
     FallbackCounts, JoinCounts, OutlineOptions, ShapeKey, ShapeMemo, MAX_GRID,
@@ -324,11 +325,32 @@ pub(crate) fn svg_document_reporting(
     done: &(dyn Fn(usize) + Sync),
 ) -> SvgOutput {
     let outline = outline_options(opts, width, height, 0);
+    // Where neither resvg nor Chromium will clip the document's path, curves need only be
+    // right as drawn whole (see `unclipped`); if a control point strayed near the border
+    // after all, the document is drawn again checking both ways.
+    let paths = if unclipped(d, width, height) {
+        let never = OutlineOptions {
+            clipping: EdgeClipping::Never,
+            ..outline
+        };
+        let paths = path_data(d, &never, band, 0, done);
+        if paths.bounds.is_none_or(|b| {
+            b.x0 >= 1.0
+                && b.y0 >= 1.0
+                && b.x1 <= f64::from(width) - 1.0
+                && b.y1 <= f64::from(height) - 1.0
+        }) {
+            paths
+        } else {
+            path_data(d, &outline, band, 0, done)
+        }
+    } else {
+        path_data(d, &outline, band, 0, done)
+    };
     let header = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
          height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
     );
-    let paths = path_data(d, &outline, band, 0, done);
     let mut svg = header;
     if !paths.data.is_empty() {
         let _ = write!(
@@ -341,6 +363,35 @@ pub(crate) fn svg_document_reporting(
     }
     svg.push_str("</svg>\n");
     paths.into_output(svg)
+}
+
+/// Fewest pixels between every contour pixel and the image border for [`unclipped`]:
+/// curves stay within 2 px of their pixels' squares (checked after drawing).
+const UNCLIPPED_MARGIN: i32 = 3;
+
+/// Whether the `width` × `height` document of `d` is drawn by resvg and by Chromium (the
+/// SVG opened as the page at 1:1) without their edge clippers, which cut curves at their
+/// extrema before subdividing them: the page is drawn in one tile ([`one_tile`]; a
+/// page of several tiles has its path clipped by each), and every contour pixel lies at
+/// least [`UNCLIPPED_MARGIN`] pixels inside the border, so that the path's bounds, rounded
+/// out by about half a pixel (tiny-skia's and Skia's `conservative_round_to_int`), stay
+/// inside the pixmap. The caller checks those bounds after drawing. Pages of 8192 px or
+/// more, which tiny-skia draws in tiles of its own, are clipped.
+fn unclipped(d: &Decomposition, width: u32, height: u32) -> bool {
+    const TINY_SKIA_TILE: u32 = 8191;
+    if width > TINY_SKIA_TILE || height > TINY_SKIA_TILE {
+        return false;
+    }
+    if !one_tile(i64::from(width), i64::from(height)) {
+        return false;
+    }
+    let m = UNCLIPPED_MARGIN;
+    d.contours.iter().flat_map(|c| &c.points).all(|p| {
+        p.x >= m
+            && p.y >= m
+            && i64::from(p.x) + i64::from(m) < i64::from(width)
+            && i64::from(p.y) + i64::from(m) < i64::from(height)
+    })
 }
 
 /// The outline options of [`SvgOptions`] for a `width` × `height` document whose contours
@@ -382,6 +433,8 @@ pub(crate) fn outline_options(
 pub(crate) struct PathData {
     /// The `d` attribute's value (empty without contours).
     pub(crate) data: String,
+    /// The bounds of every point written ([`ContourPath::point_bounds`]), before the shift.
+    bounds: Option<kurbo::Rect>,
     commands: CommandCounts,
     max_fit_error: f64,
     fallbacks: FallbackCounts,
@@ -439,6 +492,7 @@ pub(crate) fn path_data(
     let mut fallbacks = FallbackCounts::default();
     let mut joins = JoinCounts::default();
     let mut max_fit_error = 0.0f64;
+    let mut bounds: Option<kurbo::Rect> = None;
     let empty = Vec::new();
     let mut svg = String::new();
     // Contours are drawn independently, in parallel, a group at a time (only the group's
@@ -481,7 +535,11 @@ pub(crate) fn path_data(
         // large contour at the end (the 3000² sample's drawing on 2 threads: 79 -> 75 ms,
         // 146 ms on one; 1000² noise: 1.54 -> 1.39 s). The parts go back in the contours'
         // order.
-        let mut parts: Vec<(usize, (String, CommandCounts, ContourPath))> = largest_first(group)
+        #[allow(clippy::type_complexity)]
+        let mut parts: Vec<(
+            usize,
+            (String, CommandCounts, ContourPath, Option<kurbo::Rect>),
+        )> = largest_first(group)
             .par_iter()
             .with_max_len(1)
             .map(|&k| {
@@ -512,15 +570,20 @@ pub(crate) fn path_data(
                 drop_closing_line(&mut cp);
                 let mut data = String::new();
                 write_path_data(&cp, precision, shift, &mut data);
-                // Only the counts are kept: the commands are written.
+                // Only the counts and bounds are kept: the commands are written.
                 let counts = cp.counts();
+                let b = cp.point_bounds();
                 cp.commands = Vec::new();
-                (k, (data, counts, cp))
+                (k, (data, counts, cp, b))
             })
             .collect();
         parts.sort_unstable_by_key(|&(k, _)| k);
         done(g * CONTOURS_PER_GROUP + group.len());
-        for (_, (data, counts, cp)) in parts {
+        for (_, (data, counts, cp, b)) in parts {
+            bounds = match (bounds, b) {
+                (Some(a), Some(b)) => Some(a.union(b)),
+                (a, b) => a.or(b),
+            };
             commands += &counts;
             fallbacks += &cp.fallbacks;
             joins += &cp.joins;
@@ -530,6 +593,7 @@ pub(crate) fn path_data(
     }
     PathData {
         data: svg,
+        bounds,
         commands,
         max_fit_error,
         fallbacks,
@@ -607,6 +671,40 @@ mod tests {
             out.svg
         );
         assert_eq!(fidelity(&out.svg, &mask).unwrap().differing, 0);
+    }
+
+    /// Curves are checked unclipped only on pages Chromium draws in one tile whose contours
+    /// keep clear of the border; the drawing is exact in resvg either way.
+    #[test]
+    fn unclipped_only_on_one_tile_pages_clear_of_the_border() {
+        let disc = |w: u32, h: u32, cx: f64, cy: f64| {
+            Mask::from_fn(w, h, move |x, y| {
+                (f64::from(x) + 0.5 - cx).hypot(f64::from(y) + 0.5 - cy) <= 12.3
+            })
+        };
+        for (w, h, cx, cy, expected) in [
+            (60, 50, 30.0, 25.0, true),
+            (60, 50, 13.5, 25.0, false),
+            (60, 50, 30.0, 36.0, false),
+            (600, 50, 30.0, 25.0, false),
+            (50, 600, 25.0, 30.0, false),
+        ] {
+            let mask = disc(w, h, cx, cy);
+            let d = decompose(
+                trace(&mask, Convention::Default),
+                Model::Conic,
+                OutlierRule::NotInPiece,
+            );
+            assert_eq!(unclipped(&d, w, h), expected, "{w}x{h} at ({cx}, {cy})");
+            let out = svg_document(&d, w, h, &SvgOptions::default());
+            assert!(out.commands.cubic > 0, "{}", out.svg);
+            assert_eq!(
+                fidelity(&out.svg, &mask).unwrap().differing,
+                0,
+                "{}",
+                out.svg
+            );
+        }
     }
 
     /// Curved shapes far from the border and cut by it (where resvg clips the document's

@@ -1,7 +1,7 @@
 //! The closed path of one contour and the counts of what went into it.
 
 use crate::curve::PathCommand;
-use kurbo::{BezPath, PathEl, Point};
+use kurbo::{BezPath, PathEl, Point, Rect};
 
 /// Number of path commands of each type.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -130,6 +130,30 @@ pub struct ContourPath {
 }
 
 impl ContourPath {
+    /// The bounds of every point written (vertices and control points; arcs as their whole
+    /// ellipse), as tiny-skia's and Skia's `Path::bounds` see the path; `None` for an empty
+    /// contour.
+    pub fn point_bounds(&self) -> Option<Rect> {
+        if self.commands.is_empty() {
+            return None;
+        }
+        let mut b = Rect::from_points(self.start, self.start);
+        for c in &self.commands {
+            match *c {
+                PathCommand::Line(p) => b = b.union_pt(p),
+                PathCommand::Quad(a, p) => b = b.union_pt(a).union_pt(p),
+                PathCommand::Cubic(a, q, p) => b = b.union_pt(a).union_pt(q).union_pt(p),
+                PathCommand::Arc(a) => {
+                    let r = a.radii.x.abs().max(a.radii.y.abs()) * 2.0;
+                    b = b
+                        .union_pt(a.to - kurbo::Vec2::new(r, r))
+                        .union_pt(a.to + kurbo::Vec2::new(r, r));
+                }
+            }
+        }
+        Some(b)
+    }
+
     /// The path as a kurbo [`BezPath`] (arcs approximated by cubics within
     /// 0.001 px), closed; empty for an empty contour.
     pub fn to_bez_path(&self) -> BezPath {
