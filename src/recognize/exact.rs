@@ -343,6 +343,7 @@ fn charge_exact(meter: &mut Meter, params: &GjkParams, iterations: usize, n: usi
 fn exact_params(dim: usize) -> GjkParams {
     GjkParams {
         eps: 0.0,
+        gap: 0.0,
         eps_zero: 0.0,
         // Finite in exact arithmetic (Wolfe); the cap is a guard, far above what is met.
         max_iterations: 10_000 + 1_000 * dim,

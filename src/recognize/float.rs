@@ -21,6 +21,7 @@ const MAX_CORRECTIONS: usize = 5;
 
 pub(super) const FLOAT_PARAMS: GjkParams = GjkParams {
     eps: 1e-12,
+    gap: 1e-12,
     eps_zero: 1e-24,
     max_iterations: 1000,
     first_separation: true,

@@ -46,8 +46,11 @@ pub(crate) enum GjkOutcome<T> {
 /// Settings of a run.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct GjkParams {
-    /// Relative tolerance (`f64` runs only).
+    /// Relative tolerance of the minor cycle's weights and solves (`f64` runs only).
     pub eps: f64,
+    /// Relative gap `‖x‖² − x·s` below which the run has converged (`f64` runs only): a
+    /// largest-margin run may stop well before the rounding tolerance `eps`.
+    pub gap: f64,
     /// Tolerance of the test `x = 0`, relative to the largest squared vertex norm.
     pub eps_zero: f64,
     /// Iteration cap.
@@ -115,7 +118,7 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         // A support point equal to a vertex (another inlier–outlier pair with the same
         // difference) brings nothing new: in exact arithmetic its gap is zero, and pushing it
         // would make the simplex affinely dependent.
-        let converged = gap <= T::tolerance(&xx, params.eps) || simplex.contains_point(&s.point);
+        let converged = gap <= T::tolerance(&xx, params.gap) || simplex.contains_point(&s.point);
         if xs > T::zero() && (params.first_separation || converged) {
             return ended(
                 GjkOutcome::Separated {
@@ -244,6 +247,7 @@ mod tests {
         let mut simplex = Simplex::default();
         let params = GjkParams {
             eps: 1e-12,
+            gap: 1e-12,
             eps_zero: 1e-24,
             max_iterations: 100,
             first_separation: false,

@@ -40,6 +40,15 @@ fn lift_points<P: AsRef<[i64]>>(
     Some(set)
 }
 
+/// Relative gap at which the largest-margin run stops: its support point `s` along the
+/// closest point `x` has `x·s ≥ (1 − MARGIN_GAP) ‖x‖²`, and since the largest margin lies
+/// between `x·s / ‖x‖` and `‖x‖`, the margin found is within 0.1% of the largest, which no
+/// drawing can tell apart. The minor cycle keeps the decision's rounding tolerance
+/// ([`FLOAT_PARAMS`]`.eps`): a run that drops vertices whose weight is below 1e-3 stalls
+/// without a direction on some pieces. 27 shared samples, against a gap of 1e-12: conic
+/// 8 516 → 8 511 commands, the other models' the same, 0.2% fewer instructions.
+const MARGIN_GAP: f64 = 1e-3;
+
 /// The float GJK run to convergence in coordinates scaled by `scale`: the direction of
 /// largest margin, unscaled (or, when the run stalls, its last separating direction). `None`
 /// if the sets are not (numerically) separated.
@@ -53,6 +62,7 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
     let mut simplex = Simplex::default();
     let params = GjkParams {
         first_separation: false,
+        gap: MARGIN_GAP,
         ..FLOAT_PARAMS
     };
     let direction = match gjk(&mut support, &mut simplex, &params).outcome {
