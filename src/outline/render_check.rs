@@ -136,19 +136,47 @@ pub(crate) fn misplaced_pixels(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Vec<Pixel> {
+    match fill_window(reference, start, commands, clipping, canvas) {
+        Some((win, modes)) => painted_in(reference, start, commands, &win, modes),
+        None => Vec::new(),
+    }
+}
+
+/// Whether [`misplaced_pixels`] is empty: the ways of drawing curves are filled one at a
+/// time, and the first that misplaces a pixel ends the check.
+pub(crate) fn draws_right(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    clipping: EdgeClipping,
+    canvas: Option<Rect>,
+) -> bool {
+    fill_window(reference, start, commands, clipping, canvas).is_none_or(|(win, modes)| {
+        modes
+            .iter()
+            .all(|&m| painted_in(reference, start, commands, &win, &[m]).is_empty())
+    })
+}
+
+/// The window [`misplaced_pixels`] fills and the ways of drawing curves it fills them in;
+/// `None` when the window is outside the document's pixmap `canvas` (nothing is drawn).
+fn fill_window(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    clipping: EdgeClipping,
+    canvas: Option<Rect>,
+) -> Option<(Window, &'static [bool])> {
     let mut win = Window::round(reference, start, commands);
     // The window ends at the pixmap's border: tiny-skia clips the path there as it does in
     // the document (a curve crossing the border is cut at the crossing, which moves its
     // chords), and pixels outside are never drawn.
     if let Some(c) = canvas {
-        win = match win.within(Window::inside(c)) {
-            Some(w) => w,
-            None => return Vec::new(),
-        };
+        win = win.within(Window::inside(c))?;
     }
     let curved = commands.iter().any(|c| !matches!(c, PathCommand::Line(_)));
     let modes = if curved { clipping.modes() } else { &[false] };
-    painted_in(reference, start, commands, &win, modes)
+    Some((win, modes))
 }
 
 /// A rectangle of whole pixels: columns `x0..x1`, rows `y0..y1`.
@@ -412,15 +440,17 @@ pub(crate) fn loop_paints_nothing(
 ) -> bool {
     // The empty reference at the anchor: the window is the loop's.
     let nothing = Reference::new(anchor, &[]);
-    (!robust
-        || misplaced_when_moved(&nothing, anchor, lp, super::ROBUST_SHIFT, clipping, canvas)
-            .is_empty())
-        && misplaced_pixels(&nothing, anchor, lp, clipping, canvas).is_empty()
+    let moved = |d: f64| {
+        let v = kurbo::Vec2::new(d, 0.0);
+        let moved: Vec<PathCommand> = lp.iter().map(|c| c.translated(v)).collect();
+        draws_right(&nothing, anchor + v, &moved, clipping, canvas)
+    };
+    (!robust || (moved(super::ROBUST_SHIFT) && moved(-super::ROBUST_SHIFT)))
+        && draws_right(&nothing, anchor, lp, clipping, canvas)
         && super::tiles::misplaced_in_tiles(&nothing, anchor, lp, canvas).is_empty()
         && (!robust
-            || finely_flattened(anchor, lp).is_none_or(|fine| {
-                misplaced_pixels(&nothing, anchor, &fine, EdgeClipping::Never, None).is_empty()
-            }))
+            || finely_flattened(anchor, lp)
+                .is_none_or(|fine| draws_right(&nothing, anchor, &fine, EdgeClipping::Never, None)))
 }
 
 /// Largest distance (pixels) of the polyline [`finely_flattened`] draws to the true curves.
