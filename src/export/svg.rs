@@ -377,23 +377,17 @@ const UNCLIPPED_MARGIN: i32 = 3;
 /// page of several tiles has its path clipped by each), and every contour pixel lies at
 /// least [`UNCLIPPED_MARGIN`] pixels inside the border, so that the path's bounds, rounded
 /// out by about half a pixel (tiny-skia's and Skia's `conservative_round_to_int`), stay
-/// inside the pixmap. The caller checks those bounds after drawing. Pages of 8192 px or
-/// more, which tiny-skia draws in tiles of its own, are clipped.
+/// inside the pixmap. The caller checks those bounds after drawing. (tiny-skia's own tiles,
+/// above 8191 px, are far beyond a page of one Chromium tile.)
 fn unclipped(d: &Decomposition, width: u32, height: u32) -> bool {
-    const TINY_SKIA_TILE: u32 = 8191;
-    if width > TINY_SKIA_TILE || height > TINY_SKIA_TILE {
-        return false;
-    }
-    if !one_tile(i64::from(width), i64::from(height)) {
-        return false;
-    }
     let m = UNCLIPPED_MARGIN;
-    d.contours.iter().flat_map(|c| &c.points).all(|p| {
-        p.x >= m
-            && p.y >= m
-            && i64::from(p.x) + i64::from(m) < i64::from(width)
-            && i64::from(p.y) + i64::from(m) < i64::from(height)
-    })
+    one_tile(i64::from(width), i64::from(height))
+        && d.contours.iter().flat_map(|c| &c.points).all(|p| {
+            p.x >= m
+                && p.y >= m
+                && i64::from(p.x) + i64::from(m) < i64::from(width)
+                && i64::from(p.y) + i64::from(m) < i64::from(height)
+        })
 }
 
 /// The outline options of [`SvgOptions`] for a `width` × `height` document whose contours
@@ -476,6 +470,15 @@ impl SvgOutput {
     }
 }
 
+/// One contour's drawing once written: its path data, its counts, its path without the
+/// commands (the fallbacks, joins and fit error it reports), and the bounds of its points.
+struct Written {
+    data: String,
+    counts: CommandCounts,
+    path: ContourPath,
+    bounds: Option<kurbo::Rect>,
+}
+
 /// Draws every contour of `d` (see [`crate::outline`]; with `band`, smooth within it) and
 /// writes its path data, moved by
 /// `-shift` pixels in x and y, calling `done` with the number of contours drawn so far
@@ -538,11 +541,7 @@ pub(crate) fn path_data(
         // large contour at the end (the 3000² sample's drawing on 2 threads: 79 -> 75 ms,
         // 146 ms on one; 1000² noise: 1.54 -> 1.39 s). The parts go back in the contours'
         // order.
-        #[allow(clippy::type_complexity)]
-        let mut parts: Vec<(
-            usize,
-            (String, CommandCounts, ContourPath, Option<kurbo::Rect>),
-        )> = largest_first(group)
+        let mut parts: Vec<(usize, Written)> = largest_first(group)
             .par_iter()
             .with_max_len(1)
             .map(|&k| {
@@ -574,15 +573,27 @@ pub(crate) fn path_data(
                 let mut data = String::new();
                 write_path_data(&cp, precision, shift, &mut data);
                 // Only the counts and bounds are kept: the commands are written.
-                let counts = cp.counts();
-                let b = cp.point_bounds();
-                cp.commands = Vec::new();
-                (k, (data, counts, cp, b))
+                let written = Written {
+                    data,
+                    counts: cp.counts(),
+                    bounds: cp.point_bounds(),
+                    path: ContourPath {
+                        commands: Vec::new(),
+                        ..cp
+                    },
+                };
+                (k, written)
             })
             .collect();
         parts.sort_unstable_by_key(|&(k, _)| k);
         done(g * CONTOURS_PER_GROUP + group.len());
-        for (_, (data, counts, cp, b)) in parts {
+        for (_, w) in parts {
+            let Written {
+                data,
+                counts,
+                path: cp,
+                bounds: b,
+            } = w;
             bounds = match (bounds, b) {
                 (Some(a), Some(b)) => Some(a.union(b)),
                 (a, b) => a.or(b),
