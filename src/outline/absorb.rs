@@ -403,13 +403,15 @@ fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) {
             // The samples run along the curve: search a little back and further ahead.
             let lo = at.saturating_sub(4);
             let hi = (at + 16).min(STEPS);
-            at = (lo..=hi)
-                .min_by(|&i, &j| {
-                    (along[i] - s.t)
-                        .hypot2()
-                        .total_cmp(&(along[j] - s.t).hypot2())
-                })
-                .unwrap_or(at);
+            // The first nearest, each distance computed once.
+            let mut nearest = (lo, (along[lo] - s.t).hypot2());
+            for (i, p) in along.iter().enumerate().take(hi + 1).skip(lo + 1) {
+                let d = (*p - s.t).hypot2();
+                if d < nearest.1 {
+                    nearest = (i, d);
+                }
+            }
+            at = nearest.0;
             u = at as f64 / STEPS as f64;
         }
         for _ in 0..2 {
