@@ -57,9 +57,10 @@ pub struct Args {
     pub inputs: Vec<PathBuf>,
 
     /// Write the drawing as SVG, PDF or EPS, chosen by the extension: .svg, .pdf, .eps
-    /// ('-' for standard output, SVG). One path: lines, parabolas as quadratic Béziers,
+    /// ('-' for standard output, SVG). Paths of lines, parabolas as quadratic Béziers,
     /// circular and elliptic arcs as cubics within 0.01 px of the exact arc, other curves as
-    /// fitted cubics; PDF and EPS hold the same coordinates, one pixel = one point.
+    /// fitted cubics (an outer border and its holes in the same path); PDF and EPS hold the
+    /// same coordinates, one pixel = one point.
     #[arg(short, long, value_name = "OUT.svg|pdf|eps")]
     pub output: Option<PathBuf>,
 

@@ -4,6 +4,7 @@
 mod drawing;
 mod eps;
 pub mod format;
+mod groups;
 pub mod json;
 pub(crate) mod json_layout;
 pub mod layers;

@@ -1,12 +1,15 @@
 //! SVG export: the contour paths of a [`Decomposition`] (see [`crate::outline`]) written as
-//! one `<path>`.
+//! `<path>` elements.
 //!
 //! # The document
 //! `<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="W" height="H"
 //! viewBox="0 0 W H">` with the image size in pixels (one user unit = one pixel, pixel
-//! `(x, y)` = the square `[x, x+1] × [y, y+1]`), holding one `<path d="…" fill="…"
-//! fill-rule="nonzero"/>` with all contours (none for an image without foreground), and
-//! nothing else. Every number is a multiple of `2^-grid` ([`SvgOptions::grid`]) written
+//! `(x, y)` = the square `[x, x+1] × [y, y+1]`), holding `<path fill="…"
+//! fill-rule="nonzero" d="…"/>` elements (none for an image without foreground) and
+//! nothing else: each outer border with its holes in the same one, the groups that lie well
+//! inside one of Chromium's raster tiles in a path of that tile (one path on most pages
+//! under 512 px), the rest in one path first (see [`groups`](super::groups): neither
+//! resvg nor Chromium clips a path inside a tile, so its curves are checked one way). Every number is a multiple of `2^-grid` ([`SvgOptions::grid`]) written
 //! exactly (at most `grid` decimals, trailing zeros and leading zeros stripped); each
 //! contour starts with an absolute `M`, the other commands are relative (`l`, `h`, `v`,
 //! `q`, `c`; see `write_path_data`); there is no `A` (arcs are written as the cubics the
@@ -18,17 +21,18 @@
 //! nearby borders crossing near a thin background gap, or a bridge segment folding back)
 //! stay filled instead of cancelling out.
 
+use super::groups::{tiles_of_groups, Tile};
 use crate::bitmap::Band;
 use crate::contour::largest_first;
 use crate::curve::PathCommand;
 use crate::decompose::Decomposition;
-use crate::outline::tiles::one_tile;
 use crate::outline::{
     band_contour_path, contour_path, has_staircase, CommandCounts, ContourPath, EdgeClipping,
     FallbackCounts, JoinCounts, OutlineOptions, ShapeKey, ShapeMemo, MAX_GRID,
 };
 use kurbo::Point;
 use rayon::prelude::*;
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
 /// Contours drawn per parallel group by [`svg_document`]: only one group's drawings are
@@ -266,9 +270,9 @@ pub(crate) fn xml_escape(v: &str) -> String {
     s
 }
 
-/// The SVG document of a decomposition of a `width` × `height` image: one `<path>` with
-/// `fill-rule="nonzero"`, outer borders counter-clockwise, holes clockwise, width, height
-/// and viewBox the image size in pixels.
+/// The SVG document of a decomposition of a `width` × `height` image: `<path>` elements
+/// (see the [module](self) documentation) with `fill-rule="nonzero"`, outer borders
+/// counter-clockwise, holes clockwise, width, height and viewBox the image size in pixels.
 ///
 /// ```
 /// use layertrace::{decompose, svg_document, trace, Convention, Mask, Model, OutlierRule};
@@ -325,69 +329,100 @@ pub(crate) fn svg_document_reporting(
     done: &(dyn Fn(usize) + Sync),
 ) -> SvgOutput {
     let outline = outline_options(opts, width, height, 0);
-    // Where neither resvg nor Chromium will clip the document's path, curves need only be
-    // right as drawn whole (see `unclipped`); if a point strayed within a pixel of the
-    // border after all, the document is drawn again checking both ways.
-    let paths = if unclipped(d, width, height) {
-        let never = OutlineOptions {
-            clipping: EdgeClipping::Never,
-            ..outline
-        };
-        let paths = path_data(d, &never, band, 0, done);
-        if paths.bounds.is_none_or(|b| {
-            b.x0 >= 1.0
-                && b.y0 >= 1.0
-                && b.x1 <= f64::from(width) - 1.0
-                && b.y1 <= f64::from(height) - 1.0
-        }) {
-            paths
-        } else {
-            // Progress was told once already: the bar stays full while this (rare, and on
-            // a page under 512 px short) second drawing runs.
-            path_data(d, &outline, band, 0, &|_| {})
-        }
-    } else {
-        path_data(d, &outline, band, 0, done)
-    };
+    let paths = document_paths(d, &outline, width, height, band, done);
     let header = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{width}\" \
          height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n"
     );
     let mut svg = header;
-    if !paths.data.is_empty() {
+    for p in paths.iter().filter(|p| !p.data.is_empty()) {
         let _ = write!(
             svg,
             "<path fill=\"{}\" fill-rule=\"nonzero\" d=\"",
             xml_escape(&opts.fill)
         );
-        svg.push_str(&paths.data);
+        svg.push_str(&p.data);
         svg.push_str("\"/>\n");
     }
     svg.push_str("</svg>\n");
-    paths.into_output(svg)
+    let mut out = empty_output(svg);
+    for p in &paths {
+        out.add(p);
+    }
+    out
 }
 
-/// Fewest pixels between every contour pixel and the image border for [`unclipped`]:
-/// curves stay within 2 px of their pixels' squares (checked after drawing).
-const UNCLIPPED_MARGIN: i32 = 3;
-
-/// Whether the `width` × `height` document of `d` is drawn by resvg and by Chromium (the
-/// SVG opened as the page at 1:1) without their edge clippers, which cut curves at their
-/// extrema before subdividing them: the page is drawn in one tile ([`one_tile`]; a
-/// page of several tiles has its path clipped by each), and every contour pixel lies at
-/// least [`UNCLIPPED_MARGIN`] pixels inside the border, so that the path's bounds, rounded
-/// out by about half a pixel (tiny-skia's and Skia's `conservative_round_to_int`), stay
-/// inside the pixmap. The caller checks those bounds after drawing. (tiny-skia's own tiles,
-/// above 8191 px, are far beyond a page of one Chromium tile.)
-fn unclipped(d: &Decomposition, width: u32, height: u32) -> bool {
-    let m = UNCLIPPED_MARGIN;
-    one_tile(i64::from(width), i64::from(height))
-        && d.contours.iter().flat_map(|c| &c.points).all(|p| {
-            p.x >= m
-                && p.y >= m
-                && i64::from(p.x) + i64::from(m) < i64::from(width)
-                && i64::from(p.y) + i64::from(m) < i64::from(height)
-        })
+/// The paths of a `width` × `height` document: the groups of contours (an outer border and
+/// its holes) that lie well inside one of Chromium's raster tiles in a path of that tile,
+/// drawn with their curves checked unclipped only (neither resvg nor Chromium clips such a
+/// path, see [`groups`](super::groups)), the others in one path first, checked both ways.
+/// A group whose drawing strays within a pixel of its tile's side after all is drawn
+/// again the other way, into that first path.
+fn document_paths(
+    d: &Decomposition,
+    outline: &OutlineOptions,
+    width: u32,
+    height: u32,
+    band: Option<&Band>,
+    done: &(dyn Fn(usize) + Sync),
+) -> Vec<PathData> {
+    let Some(groups) = tiles_of_groups(&d.contours, width, height) else {
+        return vec![path_data(d, outline, band, 0, done)];
+    };
+    let never = OutlineOptions {
+        clipping: EdgeClipping::Never,
+        ..*outline
+    };
+    let mut rest = PathData::default();
+    let mut held: BTreeMap<Tile, Vec<(usize, Written)>> = BTreeMap::new();
+    draw_contours(
+        d,
+        &[*outline, never],
+        &|k| Some(usize::from(groups.tile[k].is_some())),
+        band,
+        0,
+        done,
+        &mut |k, w| match groups.tile[k] {
+            Some(t) => held.entry(t).or_default().push((k, w)),
+            None => rest.push(w),
+        },
+    );
+    // Each group's bounds, against its tile's.
+    let mut bounds: HashMap<usize, Option<kurbo::Rect>> = HashMap::new();
+    for (k, w) in held.values().flatten() {
+        let b = bounds.entry(groups.outer[*k]).or_default();
+        *b = union(*b, w.bounds);
+    }
+    let strays: HashSet<usize> = bounds
+        .into_iter()
+        .filter(|&(o, b)| b.is_some_and(|b| groups.tile[o].is_some_and(|t| !t.holds(b))))
+        .map(|(o, _)| o)
+        .collect();
+    let mut paths = Vec::with_capacity(held.len() + 1);
+    for (_, contours) in held {
+        let mut p = PathData::default();
+        for (k, w) in contours {
+            if !strays.contains(&groups.outer[k]) {
+                p.push(w);
+            }
+        }
+        paths.push(p);
+    }
+    if !strays.is_empty() {
+        // Progress was told once already: the bar stays full while these (rare) drawings
+        // run.
+        draw_contours(
+            d,
+            std::slice::from_ref(outline),
+            &|k| strays.contains(&groups.outer[k]).then_some(0),
+            band,
+            0,
+            &|_| {},
+            &mut |_, w| rest.push(w),
+        );
+    }
+    paths.insert(0, rest);
+    paths
 }
 
 /// The outline options of [`SvgOptions`] for a `width` × `height` document whose contours
@@ -412,8 +447,8 @@ pub(crate) fn outline_options(
         // clip the document: Chromium draws large paths tile by tile, each tile clipping
         // them. Checking the unclipped mode alone when every contour lay 3 px inside the
         // image left 26 px wrong in Chromium on the 27 shared samples instead of 12 (conic),
-        // for 14% less time. The SVG document narrows this to the unclipped mode on pages
-        // drawn in one tile (see `unclipped`).
+        // for 14% less time. The SVG document narrows this to the unclipped mode for the
+        // groups of contours it writes in a path of their tile's own (see `document_paths`).
         clipping: EdgeClipping::Unknown,
         canvas: Some(kurbo::Rect::new(
             m,
@@ -426,24 +461,49 @@ pub(crate) fn outline_options(
     }
 }
 
-/// The path data of every contour of a decomposition, and what went into it.
-pub(crate) struct PathData {
-    /// The `d` attribute's value (empty without contours).
-    pub(crate) data: String,
-    /// The bounds of every point written ([`ContourPath::point_bounds`]), before the shift.
-    bounds: Option<kurbo::Rect>,
+/// What the drawings of some contours add to a document's counts.
+#[derive(Clone, Debug, Default)]
+struct Tally {
     commands: CommandCounts,
     max_fit_error: f64,
     fallbacks: FallbackCounts,
     joins: JoinCounts,
 }
 
+impl Tally {
+    /// Counts one contour's drawing.
+    fn add(&mut self, w: &Written) {
+        self.commands += &w.counts;
+        self.fallbacks += &w.path.fallbacks;
+        self.joins += &w.path.joins;
+        self.max_fit_error = self.max_fit_error.max(w.path.max_fit_error);
+    }
+}
+
+/// Bounds of two sets of points, either empty.
+fn union(a: Option<kurbo::Rect>, b: Option<kurbo::Rect>) -> Option<kurbo::Rect> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(a.union(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// The path data of every contour of a decomposition, and what went into it.
+#[derive(Default)]
+pub(crate) struct PathData {
+    /// The `d` attribute's value (empty without contours).
+    pub(crate) data: String,
+    /// The bounds of every point written ([`ContourPath::point_bounds`]), before the shift.
+    bounds: Option<kurbo::Rect>,
+    tally: Tally,
+}
+
 impl PathData {
-    /// The [`SvgOutput`] of the document `svg` drawn with these paths alone.
-    pub(crate) fn into_output(self, svg: String) -> SvgOutput {
-        let mut out = empty_output(svg);
-        out.add(&self);
-        out
+    /// Appends one contour's drawing.
+    fn push(&mut self, w: Written) {
+        self.tally.add(&w);
+        self.bounds = union(self.bounds, w.bounds);
+        self.data.push_str(&w.data);
     }
 }
 
@@ -462,11 +522,16 @@ pub(crate) fn empty_output(svg: String) -> SvgOutput {
 impl SvgOutput {
     /// Counts the commands, fallbacks and joins of `paths` in this output.
     pub(crate) fn add(&mut self, paths: &PathData) {
-        self.commands += &paths.commands;
-        self.fallback_reasons += &paths.fallbacks;
+        self.add_tally(&paths.tally);
+    }
+
+    /// Counts the commands, fallbacks and joins of `tally` in this output.
+    fn add_tally(&mut self, tally: &Tally) {
+        self.commands += &tally.commands;
+        self.fallback_reasons += &tally.fallbacks;
         self.fallbacks = self.fallback_reasons.total();
-        self.joins += &paths.joins;
-        self.max_fit_error = self.max_fit_error.max(paths.max_fit_error);
+        self.joins += &tally.joins;
+        self.max_fit_error = self.max_fit_error.max(tally.max_fit_error);
     }
 }
 
@@ -490,67 +555,113 @@ pub(crate) fn path_data(
     shift: u32,
     done: &(dyn Fn(usize) + Sync),
 ) -> PathData {
+    let mut out = PathData {
+        data: String::new(),
+        bounds: None,
+        tally: Tally::default(),
+    };
+    draw_contours(
+        d,
+        std::slice::from_ref(outline),
+        &|_| Some(0),
+        band,
+        shift,
+        done,
+        &mut |_, w| out.push(w),
+    );
+    out
+}
+
+/// Draws the contours of `d` that `way` gives one of `outlines` (by its index; `None`
+/// leaves the contour out), with `band` smooth within it, writes each one's path data
+/// moved by `-shift` pixels in x and y and hands it to `sink` with the contour's index, in
+/// the contours' order. Calls `done` with the number of contours gone through so far after
+/// each group of them.
+fn draw_contours(
+    d: &Decomposition,
+    outlines: &[OutlineOptions],
+    way: &(dyn Fn(usize) -> Option<usize> + Sync),
+    band: Option<&Band>,
+    shift: u32,
+    done: &(dyn Fn(usize) + Sync),
+    sink: &mut dyn FnMut(usize, Written),
+) {
     let shift = f64::from(shift);
     let basis = d.model.basis();
+    let Some(first) = outlines.first() else {
+        return;
+    };
     // Multiples of 2^-grid have at most `grid` decimals: written exactly.
-    let precision = usize::from(outline.grid);
-    let mut commands = CommandCounts::default();
-    let mut fallbacks = FallbackCounts::default();
-    let mut joins = JoinCounts::default();
-    let mut max_fit_error = 0.0f64;
-    let mut bounds: Option<kurbo::Rect> = None;
+    let precision = usize::from(first.grid);
     let empty = Vec::new();
-    let mut svg = String::new();
     // Contours are drawn independently, in parallel, a group at a time (only the group's
-    // path data is held besides the document); appended in order, so the document does not
-    // depend on the number of threads.
-    // Tiny contours are drawn once per shape (see `ShapeMemo`: at most 65 536 shapes are
-    // held, 33 MB in all on 2000² noise); not with a band, whose drawing depends on the
-    // mask round the contour.
-    let mut memo = ShapeMemo::default();
+    // path data is held besides what `sink` keeps); handed over in order, so the document
+    // does not depend on the number of threads.
+    // Tiny contours are drawn once per shape and way of drawing (see `ShapeMemo`: at most
+    // 65 536 shapes are held, 33 MB in all on 2000² noise); not with a band, whose drawing
+    // depends on the mask round the contour.
+    let mut memos: Vec<ShapeMemo> = outlines.iter().map(|_| ShapeMemo::default()).collect();
     for (g, group) in d.contours.chunks(CONTOURS_PER_GROUP).enumerate() {
-        let pieces_of = |k: usize| d.pieces.get(g * CONTOURS_PER_GROUP + k).unwrap_or(&empty);
+        let base = g * CONTOURS_PER_GROUP;
+        let pieces_of = |k: usize| d.pieces.get(base + k).unwrap_or(&empty);
+        let ways: Vec<Option<usize>> = (0..group.len())
+            .map(|k| way(base + k).filter(|&i| i < outlines.len()))
+            .collect();
         let keys: Vec<Option<ShapeKey>> = group
             .iter()
             .enumerate()
             .map(|(k, c)| {
-                (band.is_none() && !memo.is_full())
-                    .then(|| ShapeKey::of(c, pieces_of(k), outline.canvas))
+                let i = ways[k]?;
+                (band.is_none() && !memos[i].is_full())
+                    .then(|| ShapeKey::of(c, pieces_of(k), outlines[i].canvas))
                     .flatten()
             })
             .collect();
         let mut new_shapes: Vec<usize> = Vec::new();
         let mut seen = std::collections::HashSet::new();
         for (k, key) in keys.iter().enumerate() {
-            if let Some(key) = key {
-                if !memo.contains(key) && seen.insert(key) {
+            if let (Some(key), Some(i)) = (key, ways[k]) {
+                if !memos[i].contains(key) && seen.insert((i, key)) {
                     new_shapes.push(k);
                 }
             }
         }
         let drawn: Vec<ContourPath> = new_shapes
             .par_iter()
-            .map(|&k| contour_path(&group[k], pieces_of(k), &basis, outline))
+            .map(|&k| {
+                contour_path(
+                    &group[k],
+                    pieces_of(k),
+                    &basis,
+                    &outlines[ways[k].unwrap_or(0)],
+                )
+            })
             .collect();
         for (&k, path) in new_shapes.iter().zip(&drawn) {
-            if let Some(key) = &keys[k] {
-                memo.insert(key.clone(), &group[k], path);
+            if let (Some(key), Some(i)) = (&keys[k], ways[k]) {
+                memos[i].insert(key.clone(), &group[k], path);
             }
         }
         // Largest contours first, one contour per job: no thread is left alone with a
         // large contour at the end (the 3000² sample's drawing on 2 threads: 79 -> 75 ms,
         // 146 ms on one; 1000² noise: 1.54 -> 1.39 s). The parts go back in the contours'
         // order.
-        let mut parts: Vec<(usize, Written)> = largest_first(group)
+        let order: Vec<usize> = largest_first(group)
+            .into_iter()
+            .filter(|&k| ways[k].is_some())
+            .collect();
+        let mut parts: Vec<(usize, Written)> = order
             .par_iter()
             .with_max_len(1)
             .map(|&k| {
                 let contour = &group[k];
                 let pieces = pieces_of(k);
+                let i = ways[k].unwrap_or(0);
+                let outline = &outlines[i];
                 let exact = || {
                     keys[k]
                         .as_ref()
-                        .and_then(|key| memo.drawing(key, contour))
+                        .and_then(|key| memos[i].drawing(key, contour))
                         .unwrap_or_else(|| contour_path(contour, pieces, &basis, outline))
                 };
                 let mut cp = match band {
@@ -586,32 +697,10 @@ pub(crate) fn path_data(
             })
             .collect();
         parts.sort_unstable_by_key(|&(k, _)| k);
-        done(g * CONTOURS_PER_GROUP + group.len());
-        for (_, w) in parts {
-            let Written {
-                data,
-                counts,
-                path: cp,
-                bounds: b,
-            } = w;
-            bounds = match (bounds, b) {
-                (Some(a), Some(b)) => Some(a.union(b)),
-                (a, b) => a.or(b),
-            };
-            commands += &counts;
-            fallbacks += &cp.fallbacks;
-            joins += &cp.joins;
-            max_fit_error = max_fit_error.max(cp.max_fit_error);
-            svg.push_str(&data);
+        done(base + group.len());
+        for (k, w) in parts {
+            sink(base + k, w);
         }
-    }
-    PathData {
-        data: svg,
-        bounds,
-        commands,
-        max_fit_error,
-        fallbacks,
-        joins,
     }
 }
 
@@ -687,33 +776,70 @@ mod tests {
         assert_eq!(fidelity(&out.svg, &mask).unwrap().differing, 0);
     }
 
-    /// Curves are checked unclipped only on pages Chromium draws in one tile whose contours
-    /// keep clear of the border; the drawing is exact in resvg either way.
+    /// Groups of contours well inside one of Chromium's tiles are written in a path of
+    /// that tile's own (their curves checked unclipped only), the others in one path; the
+    /// drawing is exact in resvg and in tiny-skia drawing Chromium's tiles either way.
     #[test]
-    fn unclipped_only_on_one_tile_pages_clear_of_the_border() {
-        let disc = |w: u32, h: u32, cx: f64, cy: f64| {
+    fn groups_inside_a_tile_get_its_own_path() {
+        // Rings (a disc with a hole) of radius 12.3 at the given centres.
+        let rings = |w: u32, h: u32, centres: &'static [(f64, f64)]| {
             Mask::from_fn(w, h, move |x, y| {
-                (f64::from(x) + 0.5 - cx).hypot(f64::from(y) + 0.5 - cy) <= 12.3
+                centres.iter().any(|&(cx, cy)| {
+                    let r = (f64::from(x) + 0.5 - cx).hypot(f64::from(y) + 0.5 - cy);
+                    (4.5..=12.3).contains(&r)
+                })
             })
         };
-        for (w, h, cx, cy, expected) in [
-            (60, 50, 30.0, 25.0, true),
-            (60, 50, 13.5, 25.0, false),
-            (60, 50, 30.0, 36.0, false),
-            (600, 50, 30.0, 25.0, false),
-            (50, 600, 25.0, 30.0, false),
-        ] {
-            let mask = disc(w, h, cx, cy);
+        /// A page, its rings' centres, the paths written, the groups a tile holds.
+        type Case = (u32, u32, &'static [(f64, f64)], usize, usize);
+        let cases: [Case; 7] = [
+            (60, 50, &[(30.0, 25.0)], 1, 1),
+            // Within 3 px of the border: the one path of the rest.
+            (60, 50, &[(13.5, 25.0)], 1, 0),
+            (60, 50, &[(30.0, 36.0)], 1, 0),
+            // One near the border, one well inside.
+            (90, 50, &[(13.5, 25.0), (60.0, 25.0)], 2, 1),
+            // Pages of tall or wide tiles.
+            (600, 50, &[(30.0, 25.0)], 1, 1),
+            (50, 600, &[(25.0, 30.0)], 1, 1),
+            // 600²: tiles of 256 px every 254; one ring in each of two tiles, one across
+            // the line at 254-256.
+            (
+                600,
+                600,
+                &[(100.0, 100.0), (400.0, 100.0), (255.0, 400.0)],
+                3,
+                2,
+            ),
+        ];
+        for (w, h, centres, paths, held) in cases {
+            let mask = rings(w, h, centres);
             let d = decompose(
                 trace(&mask, Convention::Default),
                 Model::Conic,
                 OutlierRule::NotInPiece,
             );
-            assert_eq!(unclipped(&d, w, h), expected, "{w}x{h} at ({cx}, {cy})");
+            assert_eq!(d.contours.len(), 2 * centres.len());
+            let groups = tiles_of_groups(&d.contours, w, h);
+            let tiles: HashSet<Tile> = groups
+                .iter()
+                .flat_map(|g| g.tile.iter().flatten().copied())
+                .collect();
+            let groups_held = groups.map_or(0, |g| g.tile.iter().flatten().count() / 2);
+            assert_eq!(groups_held, held, "{w}x{h} {centres:?}");
             let out = svg_document(&d, w, h, &SvgOptions::default());
+            assert_eq!(out.svg.matches("<path").count(), paths, "{}", out.svg);
+            assert_eq!(paths, tiles.len() + usize::from(held < centres.len()));
             assert!(out.commands.cubic > 0, "{}", out.svg);
             assert_eq!(
                 fidelity(&out.svg, &mask).unwrap().differing,
+                0,
+                "{}",
+                out.svg
+            );
+            let tiled = crate::fidelity::rasterize_svg_in_tiles(&out.svg, w, h).unwrap();
+            assert_eq!(
+                crate::fidelity::compare(&mask, &tiled).differing,
                 0,
                 "{}",
                 out.svg
