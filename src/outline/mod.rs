@@ -50,6 +50,7 @@ mod nearest;
 mod partition;
 mod path;
 mod render_check;
+mod scan;
 mod separation;
 mod shapes;
 mod smooth;

@@ -1,6 +1,8 @@
 //! The pixels tiny-skia draws wrong for one contour's path: one fill of the path and the
-//! contour's crack polygon reversed (see [`misplaced_pixels`]).
+//! contour's crack polygon reversed (see [`misplaced_pixels`]), by tiny-skia itself or,
+//! where it would not clip the path, by its own arithmetic ([`super::scan`]).
 
+use super::scan;
 use crate::curve::PathCommand;
 use crate::pixel::Pixel;
 use kurbo::{Point, Rect};
@@ -76,9 +78,10 @@ impl EdgeClipping {
 /// at corners), which winds its orientation `s` round exactly the pixels the contour
 /// encloses and 0 round every other pixel.
 pub(crate) struct Reference {
-    start: Point,
+    /// The polygon's first point.
+    pub(super) start: Point,
     /// The polygon's vertices after `start`, in order.
-    vertices: Vec<Point>,
+    pub(super) vertices: Vec<Point>,
     lo: Point,
     hi: Point,
 }
@@ -288,54 +291,105 @@ pub(super) fn painted_in(
     win: &Window,
     modes: &[bool],
 ) -> Vec<Pixel> {
+    // Indices (row-major in the window) of the painted pixels, of every mode. The unclipped
+    // way is computed as tiny-skia computes it where the path stays inside the window (see
+    // `scan`: the same pixels, without building a mask); the rest is filled by tiny-skia.
+    let mut painted_at: Vec<usize> = Vec::new();
+    for &clipped in modes {
+        let scanned = (!clipped)
+            .then(|| scan::painted(reference, start, commands, win))
+            .flatten();
+        match scanned {
+            Some(at) => painted_at.extend(at),
+            None => {
+                if !tiny_skia_painted(reference, start, commands, win, clipped, &mut painted_at) {
+                    return win.pixels();
+                }
+            }
+        }
+    }
+    if modes.len() > 1 {
+        painted_at.sort_unstable();
+        painted_at.dedup();
+    }
+    pixels_at(win, painted_at)
+}
+
+/// The pixels of `win` at the row-major indices `at`.
+fn pixels_at(win: &Window, at: Vec<usize>) -> Vec<Pixel> {
+    let w = (win.x1 - win.x0) as usize;
+    at.into_iter()
+        .filter_map(|at| {
+            let (x, y) = (win.x0 + (at % w) as i64, win.y0 + (at / w) as i64);
+            Some(Pixel::new(i32::try_from(x).ok()?, i32::try_from(y).ok()?))
+        })
+        .collect()
+}
+
+/// Appends to `painted_at` the indices (row-major in `win`) of the pixels tiny-skia itself
+/// paints filling the path and `reference` reversed in a mask that is exactly `win`, curves
+/// drawn `clipped` or not (see [`painted_in`]); false when tiny-skia cannot fill the path.
+fn tiny_skia_painted(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+    clipped: bool,
+    painted_at: &mut Vec<usize>,
+) -> bool {
     let (width, height) = (win.x1 - win.x0, win.y1 - win.y0);
     let size = u32::try_from(width)
         .ok()
         .zip(u32::try_from(height).ok())
         .and_then(|(w, h)| tiny_skia::IntSize::from_wh(w, h));
     let Some(size) = size else {
-        return win.pixels();
+        return false;
     };
     let len = (width * height) as usize;
-    // Indices (row-major in the window) of the painted pixels, of both modes.
-    let mut painted_at: Vec<usize> = Vec::new();
+    let painted = difference_path(
+        reference,
+        start,
+        commands,
+        win.x0 as f64,
+        win.y0 as f64,
+        clipped,
+    )
+    .and_then(|path| {
+        let mut mask = tiny_skia::Mask::from_vec(zeroed(len), size)?;
+        mask.fill_path(
+            &path,
+            tiny_skia::FillRule::Winding,
+            false,
+            tiny_skia::Transform::identity(),
+        );
+        Some(mask.take())
+    });
+    let Some(mut painted) = painted else {
+        return false;
+    };
+    take_painted(&mut painted, painted_at);
+    recycle(painted);
+    true
+}
+
+/// [`painted_in`], every mode filled by tiny-skia itself (for the tests of [`scan`]).
+#[cfg(test)]
+pub(super) fn painted_by_tiny_skia(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+    modes: &[bool],
+) -> Vec<Pixel> {
+    let mut painted_at = Vec::new();
     for &clipped in modes {
-        let painted = difference_path(
-            reference,
-            start,
-            commands,
-            win.x0 as f64,
-            win.y0 as f64,
-            clipped,
-        )
-        .and_then(|path| {
-            let mut mask = tiny_skia::Mask::from_vec(zeroed(len), size)?;
-            mask.fill_path(
-                &path,
-                tiny_skia::FillRule::Winding,
-                false,
-                tiny_skia::Transform::identity(),
-            );
-            Some(mask.take())
-        });
-        let Some(mut painted) = painted else {
+        if !tiny_skia_painted(reference, start, commands, win, clipped, &mut painted_at) {
             return win.pixels();
-        };
-        take_painted(&mut painted, &mut painted_at);
-        recycle(painted);
+        }
     }
-    if modes.len() > 1 {
-        painted_at.sort_unstable();
-        painted_at.dedup();
-    }
-    let w = width as usize;
-    painted_at
-        .into_iter()
-        .filter_map(|at| {
-            let (x, y) = (win.x0 + (at % w) as i64, win.y0 + (at / w) as i64);
-            Some(Pixel::new(i32::try_from(x).ok()?, i32::try_from(y).ok()?))
-        })
-        .collect()
+    painted_at.sort_unstable();
+    painted_at.dedup();
+    pixels_at(win, painted_at)
 }
 
 /// Appends the indices of the non-zero bytes of `mask` to `at`, in order, and zeroes them:

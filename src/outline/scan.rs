@@ -1,0 +1,510 @@
+//! tiny-skia's fill of a path that stays inside its mask, without anti-aliasing, computed
+//! with tiny-skia's own arithmetic but without its edge list, pipeline and mask: the
+//! render check's fills ([`super::render_check::painted_in`]) where tiny-skia would not
+//! clip the path.
+//!
+//! # tiny-skia's arithmetic, step by step
+//! For a path whose bounds, rounded out, lie inside the mask, tiny-skia 0.12
+//! (`scan::path::fill_path`) builds edges without clipping (`edge_builder.rs`, `build`):
+//! - a quadratic is first cut where it turns in y (`chop_quad_at_y_extrema`, in `f32`), a
+//!   cubic likewise (`chop_cubic_at_y_extrema`);
+//! - every point in `f32` becomes 26.6 fixed point by truncation, `(v · 64) as i32`;
+//! - a line (`LineEdge`), oriented downwards (winding +1, or −1 when its ends were
+//!   swapped), covers the rows `round(y0) ..= round(y1) − 1` with `round(v) = (v + 32) >>
+//!   6`, none when they are equal; its slope is `fdot6::div(x1 − x0, y1 − y0)` in 16.16,
+//!   its x at the first row's centre `x0 + fdot16::mul(slope, dy)` with `dy = (top << 6) +
+//!   32 − y0`, and each later row adds the slope;
+//! - a quadratic (`QuadraticEdge`) or cubic (`CubicEdge`) is a chain of such lines between
+//!   the points of a forward difference in 16.16 over `2^shift` steps, `shift` from the
+//!   distance of its control points to its chord (`diff_to_shift`, `cubic_delta_from_line`).
+//!
+//! The scan walker (`walk_edges`) takes a row's edges by x and, for the nonzero rule,
+//! paints the runs `[round(xa), round(xb))` over which the running sum of their windings
+//! is not zero, `round` being `(x + 0x8000) >> 16`: pixel `i` of the row is painted exactly
+//! when the windings of the edges with `round(x) ≤ i` do not sum to zero. (Merging vertical
+//! lines at the same x, `combine_vertical`, keeps those sums.) So the painted pixels follow
+//! from each edge's rows and rounded x alone, which this module computes with the same
+//! integer operations. The test below compares with tiny-skia's own fills on random paths.
+//!
+//! The cuts at y extrema and the edges' set-up are tiny-skia's code (BSD-3-Clause,
+//! Copyright 2006 The Android Open Source Project, 2020 Yevhenii Reizner), with its
+//! geometry helpers called from `tiny-skia-path`.
+
+use super::render_check::{Reference, Window};
+use crate::curve::PathCommand;
+use kurbo::Point;
+use tiny_skia_path::path_geometry::{
+    chop_cubic_at2, chop_quad_at, find_unit_quad_roots, new_t_values, valid_unit_divide,
+};
+use tiny_skia_path::{NormalizedF32Exclusive, Point as SkPoint};
+
+/// Most steps of a curve's forward difference: `2^MAX_COEFF_SHIFT` (tiny-skia's).
+const MAX_COEFF_SHIFT: i32 = 6;
+
+/// Largest window (pixels each way) filled here: its 16.16 coordinates stay far from
+/// `i32`'s range.
+const MAX_WINDOW: i64 = 8192;
+
+/// A row crossing of an edge: its row in the window, its pixel boundary `round(x)` and its
+/// winding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Crossing {
+    row: i32,
+    at: i32,
+    winding: i8,
+}
+
+/// tiny-skia's `fdot6::div`: `a / b` in 16.16.
+fn fdot6_div(a: i32, b: i32) -> i32 {
+    if i16::try_from(a).is_ok() {
+        (a << 16) / b
+    } else {
+        ((i64::from(a) << 16) / i64::from(b)).clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+    }
+}
+
+/// tiny-skia's `fdot16::mul`.
+fn fdot16_mul(a: i32, b: i32) -> i32 {
+    ((i64::from(a) * i64::from(b)) >> 16) as i32
+}
+
+/// A point in 26.6 fixed point, as tiny-skia's edges take it.
+fn fdot6(p: SkPoint) -> (i32, i32) {
+    ((p.x * 64.0) as i32, (p.y * 64.0) as i32)
+}
+
+/// tiny-skia's `diff_to_shift` without anti-aliasing: how many times to halve a curve
+/// whose control points stray `(dx, dy)` (26.6) from its chord.
+fn diff_to_shift(dx: i32, dy: i32, shift_aa: i32) -> i32 {
+    let (dx, dy) = (dx.abs(), dy.abs());
+    let mut dist = if dx > dy {
+        dx + (dy >> 1)
+    } else {
+        dy + (dx >> 1)
+    };
+    dist = (dist + (1 << (2 + shift_aa))) >> (3 + shift_aa);
+    (32 - dist.leading_zeros() as i32) >> 1
+}
+
+/// tiny-skia's `cubic_delta_from_line`.
+fn cubic_delta_from_line(a: i32, b: i32, c: i32, d: i32) -> i32 {
+    let one_third = ((a * 8 - b * 15 + 6 * c + d) * 19) >> 9;
+    let two_third = ((a + 6 * b - c * 15 + d * 8) * 19) >> 9;
+    one_third.abs().max(two_third.abs())
+}
+
+/// The row crossings of a path's edges within rows `0..height`.
+struct Crossings {
+    out: Vec<Crossing>,
+    height: i32,
+}
+
+impl Crossings {
+    /// A line between 26.6 points, `y0 ≤ y1`, of the given winding (tiny-skia's
+    /// `LineEdge::update`); whether it covers any row.
+    fn piece(&mut self, x0: i32, y0: i32, x1: i32, y1: i32, winding: i8) -> bool {
+        let (top, bottom) = ((y0 + 32) >> 6, (y1 + 32) >> 6);
+        if top == bottom {
+            return false;
+        }
+        let slope = fdot6_div(x1 - x0, y1 - y0);
+        let dy = (top << 6) + 32 - y0;
+        let mut x = (x0 + fdot16_mul(slope, dy)) << 10;
+        for row in top..bottom {
+            if (0..self.height).contains(&row) {
+                self.out.push(Crossing {
+                    row,
+                    at: (x + 0x8000) >> 16,
+                    winding,
+                });
+            }
+            x = x.wrapping_add(slope);
+        }
+        true
+    }
+
+    /// A line (`LineEdge::new`).
+    fn line(&mut self, p0: SkPoint, p1: SkPoint) {
+        let ((mut x0, mut y0), (mut x1, mut y1)) = (fdot6(p0), fdot6(p1));
+        let mut winding = 1;
+        if y0 > y1 {
+            std::mem::swap(&mut x0, &mut x1);
+            std::mem::swap(&mut y0, &mut y1);
+            winding = -1;
+        }
+        self.piece(x0, y0, x1, y1, winding);
+    }
+
+    /// A quadratic, cut where it turns in y.
+    fn quad(&mut self, p: [SkPoint; 3]) {
+        let mut mono = [SkPoint::zero(); 5];
+        let n = chop_quad_at_y_extrema(&p, &mut mono);
+        for i in 0..=n {
+            self.mono_quad(&mono[i * 2..i * 2 + 3]);
+        }
+    }
+
+    /// A quadratic monotonic in y (`QuadraticEdge`).
+    fn mono_quad(&mut self, p: &[SkPoint]) {
+        let ((mut x0, mut y0), (x1, y1), (mut x2, mut y2)) =
+            (fdot6(p[0]), fdot6(p[1]), fdot6(p[2]));
+        let mut winding = 1;
+        if y0 > y2 {
+            std::mem::swap(&mut x0, &mut x2);
+            std::mem::swap(&mut y0, &mut y2);
+            winding = -1;
+        }
+        if (y0 + 32) >> 6 == (y2 + 32) >> 6 {
+            return;
+        }
+        let dx = ((x1 << 1) - x0 - x2) >> 2;
+        let dy = ((y1 << 1) - y0 - y2) >> 2;
+        let shift = diff_to_shift(dx, dy, 0).clamp(1, MAX_COEFF_SHIFT);
+        let curve_shift = shift - 1;
+        // A and B at half their value (tiny-skia's overflow guard).
+        let a = (x0 - x1 - x1 + x2) << 9;
+        let b = (x1 - x0) << 10;
+        let (mut qx, mut qdx, qddx) = (x0 << 10, b + (a >> shift), a >> (shift - 1));
+        let a = (y0 - y1 - y1 + y2) << 9;
+        let b = (y1 - y0) << 10;
+        let (mut qy, mut qdy, qddy) = (y0 << 10, b + (a >> shift), a >> (shift - 1));
+        let (last_x, last_y) = (x2 << 10, y2 << 10);
+        let mut count = 1 << shift;
+        while count > 0 {
+            count -= 1;
+            let (nx, ny) = if count > 0 {
+                let n = (qx + (qdx >> curve_shift), qy + (qdy >> curve_shift));
+                qdx += qddx;
+                qdy += qddy;
+                n
+            } else {
+                (last_x, last_y)
+            };
+            self.piece(qx >> 10, qy >> 10, nx >> 10, ny >> 10, winding);
+            (qx, qy) = (nx, ny);
+        }
+    }
+
+    /// A cubic, cut where it turns in y.
+    fn cubic(&mut self, p: [SkPoint; 4]) {
+        let mut mono = [SkPoint::zero(); 10];
+        let n = chop_cubic_at_y_extrema(&p, &mut mono);
+        for i in 0..=n {
+            self.mono_cubic(&mono[i * 3..i * 3 + 4]);
+        }
+    }
+
+    /// A cubic monotonic in y (`CubicEdge`).
+    fn mono_cubic(&mut self, p: &[SkPoint]) {
+        let ((mut x0, mut y0), (mut x1, mut y1)) = (fdot6(p[0]), fdot6(p[1]));
+        let ((mut x2, mut y2), (mut x3, mut y3)) = (fdot6(p[2]), fdot6(p[3]));
+        let mut winding = 1;
+        if y0 > y3 {
+            std::mem::swap(&mut x0, &mut x3);
+            std::mem::swap(&mut x1, &mut x2);
+            std::mem::swap(&mut y0, &mut y3);
+            std::mem::swap(&mut y1, &mut y2);
+            winding = -1;
+        }
+        if (y0 + 32) >> 6 == (y3 + 32) >> 6 {
+            return;
+        }
+        let dx = cubic_delta_from_line(x0, x1, x2, x3);
+        let dy = cubic_delta_from_line(y0, y1, y2, y3);
+        let shift = (diff_to_shift(dx, dy, 2) + 1).min(MAX_COEFF_SHIFT);
+        let (mut up_shift, mut down_shift) = (6, shift - 4);
+        if down_shift < 0 {
+            down_shift = 0;
+            up_shift = 10 - shift;
+        }
+        let coefficients = |v0: i32, v1: i32, v2: i32, v3: i32| {
+            let b = (3 * (v1 - v0)) << up_shift;
+            let c = (3 * (v0 - v1 - v1 + v2)) << up_shift;
+            let d = (v3 + 3 * (v1 - v2) - v0) << up_shift;
+            (
+                v0 << 10,
+                b + (c >> shift) + (d >> (2 * shift)),
+                2 * c + ((3 * d) >> (shift - 1)),
+                (3 * d) >> (shift - 1),
+            )
+        };
+        let (mut cx, mut cdx, mut cddx, cdddx) = coefficients(x0, x1, x2, x3);
+        let (mut cy, mut cdy, mut cddy, cdddy) = coefficients(y0, y1, y2, y3);
+        let (last_x, last_y) = (x3 << 10, y3 << 10);
+        let mut count = -(1 << shift);
+        while count < 0 {
+            count += 1;
+            let (nx, mut ny) = if count < 0 {
+                let n = (cx + (cdx >> down_shift), cy + (cdy >> down_shift));
+                cdx += cddx >> shift;
+                cddx += cdddx;
+                cdy += cddy >> shift;
+                cddy += cdddy;
+                n
+            } else {
+                (last_x, last_y)
+            };
+            // tiny-skia pins what its fixed point does not keep monotonic.
+            if ny < cy {
+                ny = cy;
+            }
+            self.piece(cx >> 10, cy >> 10, nx >> 10, ny >> 10, winding);
+            (cx, cy) = (nx, ny);
+        }
+    }
+}
+
+/// tiny-skia's `chop_quad_at_y_extrema`: 0 for one quadratic in `dst[0..3]`, 1 for two in
+/// `dst[0..5]`, each monotonic in y.
+fn chop_quad_at_y_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5]) -> usize {
+    let (a, mut b, c) = (src[0].y, src[1].y, src[2].y);
+    let ab = a - b;
+    let bc = if ab < 0.0 { -(b - c) } else { b - c };
+    if ab == 0.0 || bc < 0.0 {
+        if let Some(t) = valid_unit_divide(a - b, a - b - b + c) {
+            chop_quad_at(src, t, dst);
+            dst[1].y = dst[2].y;
+            dst[3].y = dst[2].y;
+            return 1;
+        }
+        b = if (a - b).abs() < (b - c).abs() { a } else { c };
+    }
+    dst[0] = SkPoint::from_xy(src[0].x, a);
+    dst[1] = SkPoint::from_xy(src[1].x, b);
+    dst[2] = SkPoint::from_xy(src[2].x, c);
+    0
+}
+
+/// tiny-skia's `chop_cubic_at_y_extrema`: the number of cuts (0 to 2), the cubics in
+/// `dst[0..4]`, `dst[3..7]`, `dst[6..10]`, each monotonic in y.
+fn chop_cubic_at_y_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10]) -> usize {
+    let (a, b, c, d) = (src[0].y, src[1].y, src[2].y, src[3].y);
+    let mut t_values = new_t_values();
+    let roots = find_unit_quad_roots(
+        d - a + 3.0 * (b - c),
+        2.0 * (a - b - b + c),
+        b - a,
+        &mut t_values,
+    );
+    let t_values = &t_values[..roots];
+    chop_cubic_at(src, t_values, dst);
+    if !t_values.is_empty() {
+        dst[2].y = dst[3].y;
+        dst[4].y = dst[3].y;
+        if t_values.len() == 2 {
+            dst[5].y = dst[6].y;
+            dst[7].y = dst[6].y;
+        }
+    }
+    t_values.len()
+}
+
+/// tiny-skia's `chop_cubic_at`: `src` cut at the increasing `t_values`.
+fn chop_cubic_at(src: &[SkPoint; 4], t_values: &[NormalizedF32Exclusive], dst: &mut [SkPoint]) {
+    let Some(&first) = t_values.first() else {
+        dst[..4].copy_from_slice(src);
+        return;
+    };
+    let mut t = first;
+    let mut tmp = *src;
+    let mut offset = 0;
+    for i in 0..t_values.len() {
+        chop_cubic_at2(&tmp, t, &mut dst[offset..]);
+        if i == t_values.len() - 1 {
+            break;
+        }
+        offset += 3;
+        tmp.copy_from_slice(&dst[offset..offset + 4]);
+        match valid_unit_divide(
+            t_values[i + 1].get() - t_values[i].get(),
+            1.0 - t_values[i].get(),
+        ) {
+            Some(n) => t = n,
+            None => {
+                dst[offset + 4] = tmp[3];
+                dst[offset + 5] = tmp[3];
+                dst[offset + 6] = tmp[3];
+                break;
+            }
+        }
+    }
+}
+
+/// The row-major indices, in the window `win`, of the pixels tiny-skia paints filling the
+/// path `M start commands Z` followed by `reference` reversed without its edge clipper
+/// (see [`super::render_check::painted_in`], the unclipped way of drawing curves).
+///
+/// Returns `None` when that is not what tiny-skia would do here: a point (control points
+/// included) not finite or less than a pixel inside the window (tiny-skia would then clip
+/// the path), an arc, or a window over [`MAX_WINDOW`] pixels.
+pub(super) fn painted(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+) -> Option<Vec<usize>> {
+    let (w, h) = (win.x1 - win.x0, win.y1 - win.y0);
+    if !(1..=MAX_WINDOW).contains(&w) || !(1..=MAX_WINDOW).contains(&h) {
+        return None;
+    }
+    let (wf, hf) = (w as f64, h as f64);
+    let (dx, dy) = (win.x0 as f64, win.y0 as f64);
+    // As `difference_path` hands the points to tiny-skia.
+    let f = |p: Point| -> Option<SkPoint> {
+        let (x, y) = (p.x - dx, p.y - dy);
+        (x >= 1.0 && y >= 1.0 && x <= wf - 1.0 && y <= hf - 1.0)
+            .then(|| SkPoint::from_xy(x as f32, y as f32))
+    };
+    let mut edges = Crossings {
+        out: Vec::with_capacity(4 * (commands.len() + reference.vertices.len())),
+        height: h as i32,
+    };
+    let first = f(start)?;
+    let mut pen = first;
+    for c in commands {
+        pen = match *c {
+            PathCommand::Line(p) => {
+                let q = f(p)?;
+                edges.line(pen, q);
+                q
+            }
+            PathCommand::Quad(a, p) => {
+                let (a, q) = (f(a)?, f(p)?);
+                edges.quad([pen, a, q]);
+                q
+            }
+            PathCommand::Cubic(a, b, p) => {
+                let (a, b, q) = (f(a)?, f(b)?, f(p)?);
+                edges.cubic([pen, a, b, q]);
+                q
+            }
+            PathCommand::Arc(_) => return None,
+        };
+    }
+    edges.line(pen, first);
+    // The reference reversed: from its start through its vertices backwards, closed.
+    let rstart = f(reference.start)?;
+    let mut pen = rstart;
+    for &p in reference.vertices.iter().rev() {
+        let q = f(p)?;
+        edges.line(pen, q);
+        pen = q;
+    }
+    edges.line(pen, rstart);
+    // By row (a counting sort: a large contour's crack polygon crosses thousands of rows a
+    // few times each), then by x within each row.
+    let crossings = edges.out;
+    let mut starts = vec![0usize; h as usize + 1];
+    for c in &crossings {
+        starts[c.row as usize + 1] += 1;
+    }
+    for r in 0..h as usize {
+        starts[r + 1] += starts[r];
+    }
+    let mut next = starts.clone();
+    let mut by_row = vec![(0i32, 0i8); crossings.len()];
+    for c in &crossings {
+        let k = &mut next[c.row as usize];
+        by_row[*k] = (c.at, c.winding);
+        *k += 1;
+    }
+    // Runs of each row in order: the indices come out sorted.
+    let mut painted = Vec::new();
+    for (row, span) in starts.windows(2).enumerate() {
+        let line = &mut by_row[span[0]..span[1]];
+        if line.is_empty() {
+            continue;
+        }
+        line.sort_unstable();
+        let base = row * w as usize;
+        let mut winding = 0i32;
+        let mut from = 0;
+        for &(at, wi) in line.iter() {
+            if winding == 0 {
+                from = at;
+            }
+            winding += i32::from(wi);
+            if winding == 0 {
+                let (a, b) = (from.clamp(0, w as i32), at.clamp(0, w as i32));
+                painted.extend((a..b).map(|x| base + x as usize));
+            }
+        }
+    }
+    Some(painted)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::render_check::{painted_by_tiny_skia, Reference, Window};
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A command from random numbers: a line, quadratic or cubic through points of
+    /// `0..10` px (plus `off`) rounded to multiples of `1/grid`.
+    fn command(kind: u8, v: [u16; 6], grid: f64, off: f64) -> PathCommand {
+        let q = |a: u16, b: u16| {
+            let r = |t: u16| (f64::from(t) / 6553.5 * grid).round() / grid + off;
+            Point::new(r(a), r(b))
+        };
+        match kind {
+            0 => PathCommand::Line(q(v[0], v[1])),
+            1 => PathCommand::Quad(q(v[0], v[1]), q(v[2], v[3])),
+            _ => PathCommand::Cubic(q(v[0], v[1]), q(v[2], v[3]), q(v[4], v[5])),
+        }
+    }
+
+    proptest! {
+        /// The same pixels as tiny-skia's own fill, for random paths of lines, quadratics
+        /// and cubics on the 1/64-px grid and off it, against random crack-like references.
+        #[test]
+        fn same_pixels_as_tiny_skia(
+            path in prop::collection::vec((0u8..3, any::<[u16; 6]>()), 1..8),
+            start in any::<[u16; 2]>(),
+            refp in prop::collection::vec((0i32..10, 0i32..10), 3..8),
+            grid in prop::sample::select(vec![1.0, 16.0, 64.0, 100.0, 1000.0]),
+            off in prop::sample::select(vec![2.0, 2.3, 41.0]),
+        ) {
+            let commands: Vec<PathCommand> =
+                path.iter().map(|&(k, v)| command(k, v, grid, off)).collect();
+            let PathCommand::Line(start) = command(0, [start[0], start[1], 0, 0, 0, 0], grid, off)
+            else {
+                unreachable!()
+            };
+            let r = |&(x, y): &(i32, i32)| Point::new(f64::from(x) + off, f64::from(y) + off);
+            let rc: Vec<PathCommand> = refp[1..].iter().map(|p| PathCommand::Line(r(p))).collect();
+            let reference = Reference::new(r(&refp[0]), &rc);
+            let win = Window::round(&reference, start, &commands);
+            let ours = painted(&reference, start, &commands, &win).expect("inside");
+            let w = (win.x1 - win.x0) as usize;
+            let theirs: Vec<usize> = painted_by_tiny_skia(&reference, start, &commands, &win, &[false])
+                .into_iter()
+                .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
+                .collect();
+            prop_assert_eq!(ours, theirs);
+        }
+    }
+
+    #[test]
+    fn paths_tiny_skia_would_clip_are_left_to_it() {
+        let start = Point::new(5.0, 5.0);
+        let reference = Reference::new(start, &[PathCommand::Line(Point::new(6.0, 5.0))]);
+        let win = Window {
+            x0: 0,
+            y0: 0,
+            x1: 10,
+            y1: 10,
+        };
+        let inside = [PathCommand::Cubic(
+            Point::new(6.0, 6.0),
+            Point::new(2.0, 8.0),
+            Point::new(5.0, 7.0),
+        )];
+        assert!(painted(&reference, start, &inside, &win).is_some());
+        // A control point within a pixel of the window's side.
+        let near = [PathCommand::Quad(
+            Point::new(9.5, 6.0),
+            Point::new(5.0, 7.0),
+        )];
+        assert!(painted(&reference, start, &near, &win).is_none());
+    }
+}
