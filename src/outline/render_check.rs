@@ -291,15 +291,12 @@ pub(super) fn painted_in(
     win: &Window,
     modes: &[bool],
 ) -> Vec<Pixel> {
-    // Indices (row-major in the window) of the painted pixels, of every mode. The unclipped
-    // way is computed as tiny-skia computes it where the path stays inside the window (see
-    // `scan`: the same pixels, without building a mask); the rest is filled by tiny-skia.
+    // Indices (row-major in the window) of the painted pixels, of every mode: computed as
+    // tiny-skia computes them where the path stays inside the window (see `scan`: the same
+    // pixels, without building a mask), else filled by tiny-skia.
     let mut painted_at: Vec<usize> = Vec::new();
     for &clipped in modes {
-        let scanned = (!clipped)
-            .then(|| scan::painted(reference, start, commands, win))
-            .flatten();
-        match scanned {
+        match scan::painted(reference, start, commands, win, clipped) {
             Some(at) => painted_at.extend(at),
             None => {
                 if !tiny_skia_painted(reference, start, commands, win, clipped, &mut painted_at) {

@@ -97,6 +97,10 @@ fn cubic_delta_from_line(a: i32, b: i32, c: i32, d: i32) -> i32 {
 struct Crossings {
     out: Vec<Crossing>,
     height: i32,
+    /// Whether curves are also cut where they turn in x (the clipped way: tiny-skia's
+    /// edge clipper cuts them so before clipping each part, which inside the window
+    /// leaves it as it is).
+    x_chops: bool,
 }
 
 impl Crossings {
@@ -140,7 +144,16 @@ impl Crossings {
         let mut mono = [SkPoint::zero(); 5];
         let n = chop_quad_at_y_extrema(&p, &mut mono);
         for i in 0..=n {
-            self.mono_quad(&mono[i * 2..i * 2 + 3]);
+            let part = [mono[i * 2], mono[i * 2 + 1], mono[i * 2 + 2]];
+            if self.x_chops {
+                let mut mono_x = [SkPoint::zero(); 5];
+                let m = chop_quad_at_x_extrema(&part, &mut mono_x);
+                for j in 0..=m {
+                    self.mono_quad(&mono_x[j * 2..j * 2 + 3]);
+                }
+            } else {
+                self.mono_quad(&part);
+            }
         }
     }
 
@@ -190,7 +203,21 @@ impl Crossings {
         let mut mono = [SkPoint::zero(); 10];
         let n = chop_cubic_at_y_extrema(&p, &mut mono);
         for i in 0..=n {
-            self.mono_cubic(&mono[i * 3..i * 3 + 4]);
+            let part = [
+                mono[i * 3],
+                mono[i * 3 + 1],
+                mono[i * 3 + 2],
+                mono[i * 3 + 3],
+            ];
+            if self.x_chops {
+                let mut mono_x = [SkPoint::zero(); 10];
+                let m = chop_cubic_at_x_extrema(&part, &mut mono_x);
+                for j in 0..=m {
+                    self.mono_cubic(&mono_x[j * 3..j * 3 + 4]);
+                }
+            } else {
+                self.mono_cubic(&part);
+            }
         }
     }
 
@@ -254,31 +281,68 @@ impl Crossings {
     }
 }
 
-/// tiny-skia's `chop_quad_at_y_extrema`: 0 for one quadratic in `dst[0..3]`, 1 for two in
-/// `dst[0..5]`, each monotonic in y.
-fn chop_quad_at_y_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5]) -> usize {
-    let (a, mut b, c) = (src[0].y, src[1].y, src[2].y);
+/// A point's coordinate along `axis` (0: x, 1: y).
+fn coord(p: SkPoint, axis: usize) -> f32 {
+    if axis == 0 {
+        p.x
+    } else {
+        p.y
+    }
+}
+
+/// Sets a point's coordinate along `axis` (0: x, 1: y).
+fn set_coord(p: &mut SkPoint, axis: usize, v: f32) {
+    if axis == 0 {
+        p.x = v;
+    } else {
+        p.y = v;
+    }
+}
+
+/// tiny-skia's `chop_quad_at_y_extrema` (`axis` 1) and `chop_quad_at_x_extrema` (`axis`
+/// 0): 0 for one quadratic in `dst[0..3]`, 1 for two in `dst[0..5]`, each monotonic along
+/// the axis.
+fn chop_quad_at_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5], axis: usize) -> usize {
+    let (a, mut b, c) = (
+        coord(src[0], axis),
+        coord(src[1], axis),
+        coord(src[2], axis),
+    );
     let ab = a - b;
     let bc = if ab < 0.0 { -(b - c) } else { b - c };
     if ab == 0.0 || bc < 0.0 {
         if let Some(t) = valid_unit_divide(a - b, a - b - b + c) {
             chop_quad_at(src, t, dst);
-            dst[1].y = dst[2].y;
-            dst[3].y = dst[2].y;
+            // Flatten the double extremum.
+            let m = coord(dst[2], axis);
+            set_coord(&mut dst[1], axis, m);
+            set_coord(&mut dst[3], axis, m);
             return 1;
         }
         b = if (a - b).abs() < (b - c).abs() { a } else { c };
     }
-    dst[0] = SkPoint::from_xy(src[0].x, a);
-    dst[1] = SkPoint::from_xy(src[1].x, b);
-    dst[2] = SkPoint::from_xy(src[2].x, c);
+    dst[..3].copy_from_slice(src);
+    set_coord(&mut dst[0], axis, a);
+    set_coord(&mut dst[1], axis, b);
+    set_coord(&mut dst[2], axis, c);
     0
 }
 
-/// tiny-skia's `chop_cubic_at_y_extrema`: the number of cuts (0 to 2), the cubics in
-/// `dst[0..4]`, `dst[3..7]`, `dst[6..10]`, each monotonic in y.
-fn chop_cubic_at_y_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10]) -> usize {
-    let (a, b, c, d) = (src[0].y, src[1].y, src[2].y, src[3].y);
+/// tiny-skia's `chop_quad_at_y_extrema`.
+fn chop_quad_at_y_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5]) -> usize {
+    chop_quad_at_extrema(src, dst, 1)
+}
+
+/// tiny-skia's `chop_quad_at_x_extrema`.
+fn chop_quad_at_x_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5]) -> usize {
+    chop_quad_at_extrema(src, dst, 0)
+}
+
+/// tiny-skia's `chop_cubic_at_y_extrema` (`axis` 1) and `chop_cubic_at_x_extrema` (`axis`
+/// 0): the number of cuts (0 to 2), the cubics in `dst[0..4]`, `dst[3..7]`, `dst[6..10]`,
+/// each monotonic along the axis.
+fn chop_cubic_at_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10], axis: usize) -> usize {
+    let [a, b, c, d] = src.map(|p| coord(p, axis));
     let mut t_values = new_t_values();
     let roots = find_unit_quad_roots(
         d - a + 3.0 * (b - c),
@@ -288,15 +352,28 @@ fn chop_cubic_at_y_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10]) -> usize
     );
     let t_values = &t_values[..roots];
     chop_cubic_at(src, t_values, dst);
+    // Flatten the extrema.
     if !t_values.is_empty() {
-        dst[2].y = dst[3].y;
-        dst[4].y = dst[3].y;
+        let m = coord(dst[3], axis);
+        set_coord(&mut dst[2], axis, m);
+        set_coord(&mut dst[4], axis, m);
         if t_values.len() == 2 {
-            dst[5].y = dst[6].y;
-            dst[7].y = dst[6].y;
+            let m = coord(dst[6], axis);
+            set_coord(&mut dst[5], axis, m);
+            set_coord(&mut dst[7], axis, m);
         }
     }
     t_values.len()
+}
+
+/// tiny-skia's `chop_cubic_at_y_extrema`.
+fn chop_cubic_at_y_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10]) -> usize {
+    chop_cubic_at_extrema(src, dst, 1)
+}
+
+/// tiny-skia's `chop_cubic_at_x_extrema`.
+fn chop_cubic_at_x_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10]) -> usize {
+    chop_cubic_at_extrema(src, dst, 0)
 }
 
 /// tiny-skia's `chop_cubic_at`: `src` cut at the increasing `t_values`.
@@ -331,8 +408,9 @@ fn chop_cubic_at(src: &[SkPoint; 4], t_values: &[NormalizedF32Exclusive], dst: &
 }
 
 /// The row-major indices, in the window `win`, of the pixels tiny-skia paints filling the
-/// path `M start commands Z` followed by `reference` reversed without its edge clipper
-/// (see [`super::render_check::painted_in`], the unclipped way of drawing curves).
+/// path `M start commands Z` followed by `reference` reversed (see
+/// [`super::render_check::painted_in`]), curves drawn `clipped` or not. Inside the window
+/// tiny-skia's edge clipper only cuts curves where they turn in x as well as in y.
 ///
 /// Returns `None` when that is not what tiny-skia would do here: a point (control points
 /// included) not finite or less than a pixel inside the window (tiny-skia would then clip
@@ -342,6 +420,7 @@ pub(super) fn painted(
     start: Point,
     commands: &[PathCommand],
     win: &Window,
+    clipped: bool,
 ) -> Option<Vec<usize>> {
     let (w, h) = (win.x1 - win.x0, win.y1 - win.y0);
     if !(1..=MAX_WINDOW).contains(&w) || !(1..=MAX_WINDOW).contains(&h) {
@@ -358,6 +437,7 @@ pub(super) fn painted(
     let mut edges = Crossings {
         out: Vec::with_capacity(4 * (commands.len() + reference.vertices.len())),
         height: h as i32,
+        x_chops: clipped,
     };
     let first = f(start)?;
     let mut pen = first;
@@ -454,8 +534,9 @@ mod tests {
     }
 
     proptest! {
-        /// The same pixels as tiny-skia's own fill, for random paths of lines, quadratics
-        /// and cubics on the 1/64-px grid and off it, against random crack-like references.
+        /// The same pixels as tiny-skia's own fill, curves drawn clipped or not, for random
+        /// paths of lines, quadratics and cubics on the 1/64-px grid and off it, against
+        /// random crack-like references.
         #[test]
         fn same_pixels_as_tiny_skia(
             path in prop::collection::vec((0u8..3, any::<[u16; 6]>()), 1..8),
@@ -463,6 +544,7 @@ mod tests {
             refp in prop::collection::vec((0i32..10, 0i32..10), 3..8),
             grid in prop::sample::select(vec![1.0, 16.0, 64.0, 100.0, 1000.0]),
             off in prop::sample::select(vec![2.0, 2.3, 41.0]),
+            clipped in any::<bool>(),
         ) {
             let commands: Vec<PathCommand> =
                 path.iter().map(|&(k, v)| command(k, v, grid, off)).collect();
@@ -474,9 +556,9 @@ mod tests {
             let rc: Vec<PathCommand> = refp[1..].iter().map(|p| PathCommand::Line(r(p))).collect();
             let reference = Reference::new(r(&refp[0]), &rc);
             let win = Window::round(&reference, start, &commands);
-            let ours = painted(&reference, start, &commands, &win).expect("inside");
+            let ours = painted(&reference, start, &commands, &win, clipped).expect("inside");
             let w = (win.x1 - win.x0) as usize;
-            let theirs: Vec<usize> = painted_by_tiny_skia(&reference, start, &commands, &win, &[false])
+            let theirs: Vec<usize> = painted_by_tiny_skia(&reference, start, &commands, &win, &[clipped])
                 .into_iter()
                 .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
                 .collect();
@@ -499,12 +581,12 @@ mod tests {
             Point::new(2.0, 8.0),
             Point::new(5.0, 7.0),
         )];
-        assert!(painted(&reference, start, &inside, &win).is_some());
+        assert!(painted(&reference, start, &inside, &win, true).is_some());
         // A control point within a pixel of the window's side.
         let near = [PathCommand::Quad(
             Point::new(9.5, 6.0),
             Point::new(5.0, 7.0),
         )];
-        assert!(painted(&reference, start, &near, &win).is_none());
+        assert!(painted(&reference, start, &near, &win, false).is_none());
     }
 }
