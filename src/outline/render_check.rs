@@ -291,12 +291,39 @@ pub(super) fn painted_in(
     win: &Window,
     modes: &[bool],
 ) -> Vec<Pixel> {
-    // Indices (row-major in the window) of the painted pixels, of every mode: computed as
-    // tiny-skia computes them where the path stays inside the window (see `scan`: the same
-    // pixels, without building a mask), else filled by tiny-skia.
+    // Computed as tiny-skia computes them where the path stays inside the window (see
+    // `scan`: the same pixels, without building a mask), else filled by tiny-skia.
+    painted_by(reference, start, commands, win, modes, true)
+}
+
+/// [`painted_in`], every mode filled by tiny-skia itself (for the tests of [`scan`]).
+#[cfg(test)]
+pub(super) fn painted_by_tiny_skia(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+    modes: &[bool],
+) -> Vec<Pixel> {
+    painted_by(reference, start, commands, win, modes, false)
+}
+
+/// [`painted_in`], with [`scan::painted`] where it applies when `scanned`, else by tiny-skia.
+fn painted_by(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+    modes: &[bool],
+    scanned: bool,
+) -> Vec<Pixel> {
+    // Indices (row-major in the window) of the painted pixels, of every mode.
     let mut painted_at: Vec<usize> = Vec::new();
     for &clipped in modes {
-        match scan::painted(reference, start, commands, win, clipped) {
+        let at = scanned
+            .then(|| scan::painted(reference, start, commands, win, clipped))
+            .flatten();
+        match at {
             Some(at) => painted_at.extend(at),
             None => {
                 if !tiny_skia_painted(reference, start, commands, win, clipped, &mut painted_at) {
@@ -367,26 +394,6 @@ fn tiny_skia_painted(
     take_painted(&mut painted, painted_at);
     recycle(painted);
     true
-}
-
-/// [`painted_in`], every mode filled by tiny-skia itself (for the tests of [`scan`]).
-#[cfg(test)]
-pub(super) fn painted_by_tiny_skia(
-    reference: &Reference,
-    start: Point,
-    commands: &[PathCommand],
-    win: &Window,
-    modes: &[bool],
-) -> Vec<Pixel> {
-    let mut painted_at = Vec::new();
-    for &clipped in modes {
-        if !tiny_skia_painted(reference, start, commands, win, clipped, &mut painted_at) {
-            return win.pixels();
-        }
-    }
-    painted_at.sort_unstable();
-    painted_at.dedup();
-    pixels_at(win, painted_at)
 }
 
 /// Appends the indices of the non-zero bytes of `mask` to `at`, in order, and zeroes them:
