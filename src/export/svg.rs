@@ -271,8 +271,10 @@ pub(crate) fn xml_escape(v: &str) -> String {
 }
 
 /// The SVG document of a decomposition of a `width` × `height` image: `<path>` elements
-/// (see the [module](self) documentation) with `fill-rule="nonzero"`, outer borders
-/// counter-clockwise, holes clockwise, width, height and viewBox the image size in pixels.
+/// with `fill-rule="nonzero"` (each outer border with its holes in the same one; the groups
+/// well inside one of Chromium's raster tiles in a path of that tile, which no renderer
+/// clips, the others in one path first), outer borders counter-clockwise, holes clockwise,
+/// width, height and viewBox the image size in pixels.
 ///
 /// ```
 /// use layertrace::{decompose, svg_document, trace, Convention, Mask, Model, OutlierRule};
