@@ -31,6 +31,9 @@ use crate::outline::tiles::{tiles, TileSize};
 /// squares (checked after drawing, see [`Tile::holds`]).
 pub(crate) const TILE_MARGIN: i64 = 3;
 
+/// The side (pixels) of the pieces tiny-skia draws a larger pixmap in (its `DrawTiler`).
+const RESVG_PIECE: i64 = 8191;
+
 /// For each of `contours` (traced in the default convention, see
 /// [`crate::Convention::Default`]), the index of the outer border of its component: its
 /// own for an outer border.
@@ -93,7 +96,8 @@ pub(crate) fn outer_borders(contours: &[Contour]) -> Option<Vec<usize>> {
 }
 
 /// A tile of Chromium's raster (see [`crate::outline::tiles`]) holding groups of contours:
-/// its clip, in pixels of the page.
+/// its clip, in pixels of the page (within one of the pieces tiny-skia draws a pixmap over
+/// 8191 px in).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub(crate) struct Tile {
     /// First row of the clip.
@@ -120,12 +124,20 @@ impl Tile {
     ) -> Option<Tile> {
         let (w, h) = (i64::from(width), i64::from(height));
         let size = TileSize::of_page(w, h);
+        // tiny-skia draws a pixmap over 8191 px either way in pieces of 8191 px, each with
+        // its own clip (`DrawTiler`): the group must keep inside one of those too, and the
+        // tile's clip is its part inside that piece.
+        let pieces = w > RESVG_PIECE || h > RESVG_PIECE;
         let one = |lo: i64, hi: i64, end: i64, size: i64| {
             if lo < 0 || hi > end || lo >= hi {
                 return None;
             }
             let mut it = tiles(lo, hi, end, size);
-            let (_, clip, _) = it.next()?;
+            let (_, mut clip, _) = it.next()?;
+            if pieces {
+                let first = lo / RESVG_PIECE * RESVG_PIECE;
+                clip = (clip.0.max(first), clip.1.min(first + RESVG_PIECE));
+            }
             (it.next().is_none() && clip.0 + TILE_MARGIN <= lo && hi + TILE_MARGIN <= clip.1)
                 .then_some(clip)
         };
@@ -164,7 +176,6 @@ pub(crate) struct Grouping {
 ///
 /// Returns `None` if the contours cannot be grouped or no group is held by a tile.
 pub(crate) fn tiles_of_groups(contours: &[Contour], width: u32, height: u32) -> Option<Grouping> {
-    let outer = outer_borders(contours)?;
     let mut tile_of_outer: Vec<Option<Tile>> = vec![None; contours.len()];
     let mut any = false;
     for (k, c) in contours.iter().enumerate() {
@@ -180,8 +191,13 @@ pub(crate) fn tiles_of_groups(contours: &[Contour], width: u32, height: u32) -> 
         tile_of_outer[k] = Tile::holding(x0, y0, x1, y1, width, height);
         any |= tile_of_outer[k].is_some();
     }
+    // The cracks are looked at only when some group can be held.
+    if !any {
+        return None;
+    }
+    let outer = outer_borders(contours)?;
     let tile = outer.iter().map(|&o| tile_of_outer[o]).collect();
-    any.then_some(Grouping { outer, tile })
+    Some(Grouping { outer, tile })
 }
 
 #[cfg(test)]
@@ -288,5 +304,11 @@ mod tests {
         assert!(Tile::holding(257, 10, 300, 100, 600, 600).is_some());
         assert!(t.holds(kurbo::Rect::new(255.0, 1.0, 509.0, 255.0)));
         assert!(!t.holds(kurbo::Rect::new(254.5, 1.0, 300.0, 200.0)));
+        // 9000 × 20: one Chromium tile [8160, 8672) holds both, but tiny-skia draws the
+        // pixmap in pieces [0, 8191) and [8191, 9000), each clipped.
+        assert!(Tile::holding(8180, 3, 8189, 17, 9000, 20).is_none());
+        let t = Tile::holding(8194, 3, 8200, 17, 9000, 20).expect("inside the second piece");
+        assert_eq!((t.x0, t.x1), (8191, 8672));
+        assert!(Tile::holding(8170, 3, 8180, 17, 9000, 20).is_some());
     }
 }

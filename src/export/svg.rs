@@ -359,7 +359,8 @@ pub(crate) fn svg_document_reporting(
 /// drawn with their curves checked unclipped only (neither resvg nor Chromium clips such a
 /// path, see [`groups`](super::groups)), the others in one path first, checked both ways.
 /// A group whose drawing strays within a pixel of its tile's side after all is drawn
-/// again the other way, into that first path.
+/// again the other way, at the end of that first path. Within each path the contours are
+/// in the document's order (the strays' after the others).
 fn document_paths(
     d: &Decomposition,
     outline: &OutlineOptions,
@@ -600,8 +601,8 @@ fn draw_contours(
     // path data is held besides what `sink` keeps); handed over in order, so the document
     // does not depend on the number of threads.
     // Tiny contours are drawn once per shape and way of drawing (see `ShapeMemo`: at most
-    // 65 536 shapes are held, 33 MB in all on 2000² noise); not with a band, whose drawing
-    // depends on the mask round the contour.
+    // 65 536 shapes are held per way, 33 MB for one way on 2000² noise); not with a band,
+    // whose drawing depends on the mask round the contour.
     let mut memos: Vec<ShapeMemo> = outlines.iter().map(|_| ShapeMemo::default()).collect();
     for (g, group) in d.contours.chunks(CONTOURS_PER_GROUP).enumerate() {
         let base = g * CONTOURS_PER_GROUP;
