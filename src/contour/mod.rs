@@ -42,6 +42,20 @@ pub struct Contour {
 pub(crate) const TINY_POINTS: usize = 32;
 
 impl Contour {
+    /// The pixels the contour spans: columns `x0..x1` and rows `y0..y1`, as
+    /// `[x0, y0, x1, y1]`. Returns `None` for an empty contour.
+    pub(crate) fn pixel_box(&self) -> Option<[i64; 4]> {
+        let first = self.points.first()?;
+        let mut b = [i64::from(first.x), i64::from(first.y), 0, 0];
+        b[2] = b[0] + 1;
+        b[3] = b[1] + 1;
+        for p in &self.points {
+            let (x, y) = (i64::from(p.x), i64::from(p.y));
+            b = [b[0].min(x), b[1].min(y), b[2].max(x + 1), b[3].max(y + 1)];
+        }
+        Some(b)
+    }
+
     /// The points relative to the first one, when the contour is tiny (1 to
     /// [`TINY_POINTS`] points): what the per-shape memos of the decomposition and of the
     /// outline key on. `None` for an empty or larger contour.

@@ -179,15 +179,13 @@ pub(crate) fn tiles_of_groups(contours: &[Contour], width: u32, height: u32) -> 
     let mut tile_of_outer: Vec<Option<Tile>> = vec![None; contours.len()];
     let mut any = false;
     for (k, c) in contours.iter().enumerate() {
-        if c.hole || c.points.is_empty() {
+        if c.hole {
             continue;
         }
         // The outer border's pixels span the component's, holes included.
-        let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
-        for p in &c.points {
-            let (x, y) = (i64::from(p.x), i64::from(p.y));
-            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x + 1), y1.max(y + 1));
-        }
+        let Some([x0, y0, x1, y1]) = c.pixel_box() else {
+            continue;
+        };
         tile_of_outer[k] = Tile::holding(x0, y0, x1, y1, width, height);
         any |= tile_of_outer[k].is_some();
     }

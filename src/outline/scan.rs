@@ -48,7 +48,7 @@ const MAX_WINDOW: i64 = 8191;
 
 /// A row crossing of an edge: its row in the window, its pixel boundary `round(x)` and its
 /// winding.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Crossing {
     row: i32,
     at: i32,

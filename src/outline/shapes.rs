@@ -83,19 +83,8 @@ impl ShapeKey {
             }
         }
         // Nor near the lines where Chromium's tiles cut paths.
-        let (mut lo, mut hi) = ((first.x, first.y), (first.x, first.y));
-        for p in &contour.points {
-            lo = (lo.0.min(p.x), lo.1.min(p.y));
-            hi = (hi.0.max(p.x), hi.1.max(p.y));
-        }
-        if !clear_of_tile_cuts(
-            i64::from(lo.0),
-            i64::from(lo.1),
-            i64::from(hi.0) + 1,
-            i64::from(hi.1) + 1,
-            canvas,
-            CANVAS_MARGIN as i64,
-        ) {
+        let [x0, y0, x1, y1] = contour.pixel_box()?;
+        if !clear_of_tile_cuts(x0, y0, x1, y1, canvas, CANVAS_MARGIN as i64) {
             return None;
         }
         Some(ShapeKey {
