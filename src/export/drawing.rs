@@ -18,7 +18,7 @@
 //! `a + 2/3 (c - a)` and `p + 2/3 (c - p)` — the same curve; those thirds are the only
 //! rounded numbers (to `10^-DECIMALS`). usvg is not used here: its paths hold `f32`.
 
-use super::svg::number;
+use super::path_text::number;
 use std::fmt::Write as _;
 
 /// Decimals written for coordinates: every multiple of 1/64 (the finest grid of

@@ -13,7 +13,7 @@
 //! paints nothing and is left out).
 
 use super::drawing::{Operators, Page, DECIMALS};
-use super::svg::number;
+use super::path_text::number;
 use std::fmt::Write as _;
 
 /// The operators defined in the file's own dictionary.

@@ -12,9 +12,8 @@ use std::fmt::Write as _;
 
 use crate::bitmap::Band;
 use crate::decompose::Decomposition;
-use crate::export::svg::{
-    empty_output, outline_options, path_data, xml_escape, SvgOptions, SvgOutput,
-};
+use crate::export::path_text::xml_escape;
+use crate::export::svg::{empty_output, outline_options, path_data, SvgOptions, SvgOutput};
 use crate::outline::OutlineOptions;
 
 /// One layer of [`layers_document`]: its fill and its borders.

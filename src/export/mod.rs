@@ -9,6 +9,7 @@ pub mod json;
 pub(crate) mod json_layout;
 pub mod layers;
 pub mod partition;
+mod path_text;
 mod pdf;
 pub mod picture;
 pub mod svg;

@@ -49,7 +49,7 @@ use super::json::{
     PIECES_LIST, REGIONS_LIST,
 };
 use super::json_layout::{to_text, Break, Layout, List};
-use super::svg::{drop_closing_line, write_path_data, xml_escape};
+use super::path_text::{drop_closing_line, write_path_data, xml_escape};
 use crate::contour::crack_sides;
 use crate::decompose::Decomposition;
 use crate::outline::{BorderSource, CommandCounts, ContourPath, Partition};

@@ -18,7 +18,7 @@
 //! readers such as old Acrobat versions; poppler and most current readers draw them.
 
 use super::drawing::{Operators, Page, DECIMALS};
-use super::svg::number;
+use super::path_text::number;
 use std::fmt::Write as _;
 
 /// The path operators of PDF.

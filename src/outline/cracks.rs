@@ -4,6 +4,7 @@
 use crate::decompose::Piece;
 use crate::pixel::Pixel;
 use kurbo::Point;
+use std::collections::HashMap;
 
 /// The centre of a pixel in SVG space.
 pub(crate) fn centre(p: Pixel) -> Point {
@@ -86,4 +87,76 @@ pub(crate) fn pieces_valid(n: usize, pieces: &[Piece]) -> bool {
         next = p.last + 1;
     }
     next == n && !pieces.is_empty()
+}
+
+/// A contour's crack polygon in unit steps, for the fit's target: the middles of its cracks
+/// lie half-way between each pixel centre of the contour and the background centre beside
+/// it, where a curve separating them has the most room.
+pub(crate) struct Cracks {
+    /// The corners, one unit step apart; the last steps back to the first.
+    corners: Vec<Point>,
+    /// The indices of the corners at each integer point.
+    at: HashMap<(i64, i64), Vec<usize>>,
+}
+
+impl Cracks {
+    /// The crack polygon through the corners `polyline` (closed; axis-aligned steps of
+    /// whole pixels).
+    pub(crate) fn new(polyline: &[Point]) -> Cracks {
+        let mut corners: Vec<Point> = Vec::with_capacity(polyline.len() + 4);
+        for w in polyline.windows(2) {
+            let steps = (w[1] - w[0]).hypot().round().max(1.0) as usize;
+            corners.extend((0..steps).map(|k| w[0].lerp(w[1], k as f64 / steps as f64)));
+        }
+        if let (Some(&last), Some(&first)) = (polyline.last(), polyline.first()) {
+            if last != first {
+                corners.push(last);
+            }
+        }
+        let mut at: HashMap<(i64, i64), Vec<usize>> = HashMap::with_capacity(corners.len());
+        for (i, p) in corners.iter().enumerate() {
+            at.entry((p.x.round() as i64, p.y.round() as i64))
+                .or_default()
+                .push(i);
+        }
+        Cracks { corners, at }
+    }
+
+    /// The corners within one pixel of `p`.
+    pub(super) fn near(&self, p: Point) -> Vec<usize> {
+        let (x, y) = (p.x.round() as i64, p.y.round() as i64);
+        let mut out = Vec::new();
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                if let Some(v) = self.at.get(&(x + dx, y + dy)) {
+                    out.extend(
+                        v.iter()
+                            .copied()
+                            .filter(|&i| (self.corners[i] - p).hypot() <= 1.0),
+                    );
+                }
+            }
+        }
+        out
+    }
+
+    /// The middles of the cracks from a corner near `a` forward to one near `e`, between
+    /// `a` and `e`: the shortest such stretch of at least two and at most `max_steps` cracks.
+    /// Returns `None` if there is none.
+    pub(super) fn between(&self, a: Point, e: Point, max_steps: usize) -> Option<Vec<Point>> {
+        let m = self.corners.len();
+        let (from, to) = (self.near(a), self.near(e));
+        let (ia, steps) = from
+            .iter()
+            .flat_map(|&i| to.iter().map(move |&j| (i, (j + m - i) % m)))
+            .filter(|&(_, d)| (2..=max_steps).contains(&d))
+            .min_by_key(|&(_, d)| d)?;
+        let mut pts = Vec::with_capacity(steps + 2);
+        pts.push(a);
+        pts.extend(
+            (0..steps).map(|k| self.corners[(ia + k) % m].midpoint(self.corners[(ia + k + 1) % m])),
+        );
+        pts.push(e);
+        Some(pts)
+    }
 }
