@@ -119,7 +119,7 @@ impl Fit {
         res.resize(m, 0.0);
         let (lhs0, rhs0) = self.along;
         let mut best: Option<([f64; 4], f64)> = None;
-        for _ in 0..rounds {
+        for round in 0..rounds {
             let (mut lhs, mut rhs) = (lhs0, rhs0);
             for (r, &wi) in rows.iter().zip(w.iter()) {
                 add_row(&mut lhs, &mut rhs, r, wi);
@@ -140,7 +140,8 @@ impl Fit {
             if best.is_none_or(|(_, b)| worst < b) {
                 best = Some((p, worst));
             }
-            if total <= 1e-12 {
+            // (No weights after the last round.)
+            if total <= 1e-12 || round + 1 == rounds {
                 break;
             }
             for (wi, r) in w.iter_mut().zip(res.iter()) {
