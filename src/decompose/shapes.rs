@@ -7,7 +7,7 @@
 //! those of decomposing every contour (a piece cut by its budget is counted once per copy,
 //! as its `Cut` is).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use super::Piece;
 use crate::contour::Contour;

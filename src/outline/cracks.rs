@@ -4,7 +4,7 @@
 use crate::decompose::Piece;
 use crate::pixel::Pixel;
 use kurbo::Point;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// The centre of a pixel in SVG space.
 pub(crate) fn centre(p: Pixel) -> Point {
@@ -113,7 +113,8 @@ impl Cracks {
                 corners.push(last);
             }
         }
-        let mut at: HashMap<(i64, i64), Vec<usize>> = HashMap::with_capacity(corners.len());
+        let mut at: HashMap<(i64, i64), Vec<usize>> =
+            HashMap::with_capacity_and_hasher(corners.len(), Default::default());
         for (i, p) in corners.iter().enumerate() {
             at.entry((p.x.round() as i64, p.y.round() as i64))
                 .or_default()

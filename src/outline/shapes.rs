@@ -19,7 +19,7 @@
 //! the document's pixmap are drawn where they are: there tiny-skia clips the path at the
 //! border, which no move preserves.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use kurbo::{Point, Vec2};
 
