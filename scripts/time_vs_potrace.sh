@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # scripts/time_vs_potrace.sh — whole-process wall time of layertrace binaries relative to potrace.
 #
-# Usage: scripts/time_vs_potrace.sh [--runs N] [--model M] BIN… -- IMAGE…
+# Usage: scripts/time_vs_potrace.sh [--runs N] [--model M] [--instructions] BIN… -- IMAGE…
 #   BIN: layertrace binaries to time (e.g. builds before and after a change); IMAGE: PNG files;
-#   --runs N timed runs per tool and image (default 5); --model M for every BIN (default conic).
+#   --runs N timed runs per tool and image (default 5); --model M for every BIN (default conic);
+#   --instructions: count instructions instead of timing (see below).
 #
 # Every IMAGE is first converted once, untimed, to a PBM with layertrace's default mask
 # (composite on white, Rec. 709 luma truncated as the image crate does, foreground = luma < 128;
@@ -19,12 +20,21 @@
 # ms | BIN ms | BIN/potrace …) and a last row with the median over images of each ratio
 # (images where either tool failed are left out of that median); progress on standard error.
 #
-# Installs potrace with apt-get when it is missing (Debian, as root). Needs python3.
+# With --instructions, each tool runs once (after the same check) under valgrind's callgrind,
+# and the table gives millions of instructions instead of milliseconds: the same for every run,
+# whatever else the machine does, so builds can be compared to a fraction of a percent. For
+# each BIN it also gives the instructions of the decomposition alone (the paper's recognition:
+# the inclusive count of `decompose_reporting`, which needs BIN's symbols, as in the release
+# profile) and their ratio to potrace's whole run.
+#
+# Installs potrace (and valgrind for --instructions) with apt-get when missing (Debian, as
+# root). Needs python3.
 set -euo pipefail
 export LC_ALL=C
 
 runs=5
 model=conic
+instructions=0
 bins=()
 images=()
 seen_sep=0
@@ -35,7 +45,8 @@ while [ $# -gt 0 ]; do
         case "$1" in
             --runs) runs="${2:?--runs needs a number}"; shift ;;
             --model) model="${2:?--model needs a model}"; shift ;;
-            -h|--help) sed -n '4,6s/^# \{0,1\}//p' "$0"; exit 0 ;;
+            --instructions) instructions=1 ;;
+            -h|--help) sed -n '4,7s/^# \{0,1\}//p' "$0"; exit 0 ;;
             --) seen_sep=1 ;;
             *) bins+=("$1") ;;
         esac
@@ -43,7 +54,7 @@ while [ $# -gt 0 ]; do
     shift
 done
 if ! [[ "$runs" =~ ^[1-9][0-9]*$ ]] || [ ${#bins[@]} -eq 0 ] || [ ${#images[@]} -eq 0 ]; then
-    sed -n '4,6s/^# \{0,1\}//p' "$0" >&2
+    sed -n '4,7s/^# \{0,1\}//p' "$0" >&2
     exit 2
 fi
 
@@ -58,6 +69,16 @@ if ! command -v potrace >/dev/null 2>&1; then
     command -v potrace >/dev/null 2>&1 || { log "potrace missing and could not be installed"; exit 1; }
 fi
 log "$(potrace --version | head -n 1)"
+if [ "$instructions" = 1 ]; then
+    runs=1
+    if ! command -v callgrind_annotate >/dev/null 2>&1; then
+        if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+            log "installing valgrind (apt-get)"
+            { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq valgrind; } >&2
+        fi
+        command -v callgrind_annotate >/dev/null 2>&1 || { log "valgrind missing and could not be installed"; exit 1; }
+    fi
+fi
 
 # The extra arguments of each BIN, from its --help.
 bin_extra=()
@@ -73,8 +94,10 @@ done
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/time_vs_potrace.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-results="$tmp/results.tsv"   # image index, tool index, milliseconds or FAIL
+results="$tmp/results.tsv"   # image index, tool index, milliseconds (or instructions) or FAIL
+parts="$tmp/parts.tsv"       # image index, tool index, instructions of the decomposition
 : >"$results"
+: >"$parts"
 
 # PNG -> PBM (P4) with layertrace's default mask. Exit status 3: PNG kind not handled.
 png_to_pbm() {
@@ -165,6 +188,25 @@ time_ms() {
     return $rc
 }
 
+# Runs "$@" once under callgrind, output discarded; prints its instructions; status = the
+# command's. The profile stays in $tmp/callgrind.out for `decomposition`.
+count_instructions() {
+    local rc=0
+    valgrind --tool=callgrind --callgrind-out-file="$tmp/callgrind.out" "$@" \
+        >/dev/null 2>>"$tmp/stderr" || rc=$?
+    [ "$rc" = 0 ] || return $rc
+    sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/callgrind.out"
+}
+
+# The inclusive instructions of layertrace's decomposition in the last profile (empty when
+# the binary has no symbols). awk reads to the end: an early exit would fail the pipeline.
+decomposition() {
+    callgrind_annotate --inclusive=yes "$tmp/callgrind.out" 2>/dev/null \
+        | awk '!found && /decompose\/mod\.rs:[a-z_:]*decompose::decompose_reporting( |$)/ {
+            gsub(",", "", $1); print $1; found = 1
+        }'
+}
+
 ntools=$(( ${#bins[@]} + 1 ))
 # The command of tool T (0 = potrace, K = BIN K) on image I, into the array `cmd`.
 set_cmd() {
@@ -208,7 +250,18 @@ for i in "${!images[@]}"; do
             [ "${ok[t]}" = 1 ] || continue
             set_cmd "$t" "$i"
             : >"$tmp/stderr"
-            if ms=$(time_ms "${cmd[@]}"); then
+            if [ "$instructions" = 1 ]; then
+                if n=$(count_instructions "${cmd[@]}") && [ -n "$n" ]; then
+                    printf '%s\t%s\t%s\n' "$i" "$t" "$n" >>"$results"
+                    if [ "$t" != 0 ]; then
+                        d=$(decomposition)
+                        [ -z "$d" ] || printf '%s\t%s\t%s\n' "$i" "$t" "$d" >>"$parts"
+                    fi
+                else
+                    log "$name: ${cmd[0]} failed under callgrind: $(head -n 1 "$tmp/stderr")"
+                    ok[t]=0
+                fi
+            elif ms=$(time_ms "${cmd[@]}"); then
                 printf '%s\t%s\t%s\n' "$i" "$t" "$ms" >>"$results"
             else
                 log "$name: ${cmd[0]} failed in run $((r + 1)): $(head -n 1 "$tmp/stderr")"
@@ -223,11 +276,12 @@ for i in "${!images[@]}"; do
 done
 
 # The table: medians per tool and image, ratios to potrace, median ratio over images.
-python3 - "$results" "$ntools" "${bins[@]}" -- "${images[@]}" <<'PY'
+python3 - "$results" "$parts" "$instructions" "$ntools" "${bins[@]}" -- "${images[@]}" <<'PY'
 import os, statistics, sys
-results, ntools = sys.argv[1], int(sys.argv[2])
+results, parts, instr, ntools = sys.argv[1], sys.argv[2], sys.argv[3] == "1", int(sys.argv[4])
 sep = sys.argv.index("--")
-bins, images = sys.argv[3:sep], sys.argv[sep + 1:]
+bins, images = sys.argv[5:sep], sys.argv[sep + 1:]
+unit, scale = ("M instr", 1e-6) if instr else ("ms", 1.0)
 base = [os.path.basename(b) for b in bins]
 labels = base if len(set(base)) == len(base) else bins
 times, failed = {}, set()
@@ -237,16 +291,23 @@ for line in open(results):
         failed.add((int(i), int(t)))
     else:
         times.setdefault((int(i), int(t)), []).append(float(v))
+decomp = {}
+for line in open(parts):
+    i, t, v = line.rstrip("\n").split("\t")
+    decomp[(int(i), int(t))] = float(v) * scale
 def med(i, t):
     if (i, t) in failed or (i, t) not in times:
         return None
-    return statistics.median(times[(i, t)])
-head = ["image", "potrace ms"]
+    return statistics.median(times[(i, t)]) * scale
+head = ["image", f"potrace {unit}"]
 for l in labels:
-    head += [f"{l} ms", f"{l}/potrace"]
+    head += [f"{l} {unit}", f"{l}/potrace"]
+    if instr:
+        head += [f"{l} decomposition {unit}", "decomposition/potrace"]
 print("| " + " | ".join(head) + " |")
 print("|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|")
 ratios = [[] for _ in bins]
+dratios = [[] for _ in bins]
 fmt = lambda m: "FAIL" if m is None else f"{m:.2f}"
 for i, img in enumerate(images):
     p = med(i, 0)
@@ -259,9 +320,20 @@ for i, img in enumerate(images):
         else:
             ratios[k].append(m / p)
             row.append(f"{m / p:.2f}")
+        if instr:
+            d = decomp.get((i, k + 1)) if m is not None else None
+            row.append("—" if d is None else f"{d:.2f}")
+            if d is None or p is None or p == 0:
+                row.append("—")
+            else:
+                dratios[k].append(d / p)
+                row.append(f"{d / p:.2f}")
     print("| " + " | ".join(row) + " |")
+median = lambda r: f"**{statistics.median(r):.2f}** ({len(r)} images)" if r else "—"
 last = ["**median ratio**", ""]
 for k in range(len(bins)):
-    last += ["", f"**{statistics.median(ratios[k]):.2f}** ({len(ratios[k])} images)" if ratios[k] else "—"]
+    last += ["", median(ratios[k])]
+    if instr:
+        last += ["", median(dratios[k])]
 print("| " + " | ".join(last) + " |")
 PY
