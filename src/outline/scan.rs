@@ -140,22 +140,41 @@ impl Crossings {
         self.piece(x0, y0, x1, y1, winding);
     }
 
-    /// A quadratic, cut where it turns in y.
-    fn quad(&mut self, p: [SkPoint; 3]) {
-        let mut mono = [SkPoint::zero(); 5];
-        let n = chop_quad_at_y_extrema(&p, &mut mono);
+    /// A curve of `P` points, cut where it turns in y (`chop_y`) and, when the clipper runs,
+    /// in x (`chop_x`), each part drawn by `mono`: consecutive parts share an end point, so
+    /// part `i` of the `M` points written is `i (P − 1) .. i (P − 1) + P`.
+    fn monotonic_parts<const P: usize, const M: usize>(
+        &mut self,
+        p: [SkPoint; P],
+        chop_y: fn(&[SkPoint; P], &mut [SkPoint; M]) -> usize,
+        chop_x: fn(&[SkPoint; P], &mut [SkPoint; M]) -> usize,
+        mono: fn(&mut Self, &[SkPoint]),
+    ) {
+        let step = P - 1;
+        let mut mono_y = [SkPoint::zero(); M];
+        let n = chop_y(&p, &mut mono_y);
         for i in 0..=n {
-            let part = [mono[i * 2], mono[i * 2 + 1], mono[i * 2 + 2]];
+            let part: [SkPoint; P] = std::array::from_fn(|k| mono_y[i * step + k]);
             if self.x_chops {
-                let mut mono_x = [SkPoint::zero(); 5];
-                let m = chop_quad_at_x_extrema(&part, &mut mono_x);
+                let mut mono_x = [SkPoint::zero(); M];
+                let m = chop_x(&part, &mut mono_x);
                 for j in 0..=m {
-                    self.mono_quad(&mono_x[j * 2..j * 2 + 3]);
+                    mono(self, &mono_x[j * step..j * step + P]);
                 }
             } else {
-                self.mono_quad(&part);
+                mono(self, &part);
             }
         }
+    }
+
+    /// A quadratic, cut where it turns in y.
+    fn quad(&mut self, p: [SkPoint; 3]) {
+        self.monotonic_parts(
+            p,
+            chop_quad_at_y_extrema,
+            chop_quad_at_x_extrema,
+            Self::mono_quad,
+        );
     }
 
     /// A quadratic monotonic in y (`QuadraticEdge`).
@@ -201,25 +220,12 @@ impl Crossings {
 
     /// A cubic, cut where it turns in y.
     fn cubic(&mut self, p: [SkPoint; 4]) {
-        let mut mono = [SkPoint::zero(); 10];
-        let n = chop_cubic_at_y_extrema(&p, &mut mono);
-        for i in 0..=n {
-            let part = [
-                mono[i * 3],
-                mono[i * 3 + 1],
-                mono[i * 3 + 2],
-                mono[i * 3 + 3],
-            ];
-            if self.x_chops {
-                let mut mono_x = [SkPoint::zero(); 10];
-                let m = chop_cubic_at_x_extrema(&part, &mut mono_x);
-                for j in 0..=m {
-                    self.mono_cubic(&mono_x[j * 3..j * 3 + 4]);
-                }
-            } else {
-                self.mono_cubic(&part);
-            }
-        }
+        self.monotonic_parts(
+            p,
+            chop_cubic_at_y_extrema,
+            chop_cubic_at_x_extrema,
+            Self::mono_cubic,
+        );
     }
 
     /// A cubic monotonic in y (`CubicEdge`).
