@@ -7,8 +7,9 @@
 #
 # Installs what is missing (Debian, as root): potrace with apt-get, vtracer with
 # `cargo install vtracer --locked` into target/tools. Needs no network once both are there
-# and the crate builds. Then builds layertrace and examples/compare.rs (release) and prints
-# the markdown tables on standard output (progress on standard error).
+# and the crate builds. Then builds layertrace as shipped (scripts/build_release.sh: static on
+# Linux with glibc; $LAYERTRACE, if set, is timed instead) and examples/compare.rs (release),
+# and prints the markdown tables on standard output (progress on standard error).
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -54,8 +55,9 @@ if [ ! -x "$TOOLS/bin/vtracer" ]; then
         || log "could not install vtracer; its rows will be skipped"
 fi
 
-log "building layertrace and the compare example (release)"
-cargo build --release >&2
+log "building layertrace as shipped (scripts/build_release.sh) and the compare example (release)"
+LAYERTRACE="${LAYERTRACE:-$(scripts/build_release.sh)}"
+export LAYERTRACE
 cargo build --release --example compare >&2
 
 if [ -x "$TOOLS/bin/vtracer" ]; then export VTRACER="${VTRACER:-$TOOLS/bin/vtracer}"; fi

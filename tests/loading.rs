@@ -1,12 +1,14 @@
 //! Loading through the CLI: standard input, pipes and FIFOs, truncated and forged JPEGs,
 //! `--max-memory`, and a memory-limited run that must end with a message, never an abort.
 
+mod common;
+
+use common::bin_path;
 use std::io::{Cursor, Write};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::Duration;
 
-const BIN: &str = env!("CARGO_BIN_EXE_layertrace");
 const SAMPLE: &str = "samples/glyph_g_liberationserif_cap120.png";
 
 /// A fresh folder of its own (random name, removed when dropped, even when the test fails).
@@ -20,7 +22,7 @@ fn scratch(name: &str) -> tempfile::TempDir {
 /// Runs the CLI with `stdin` as standard input (written from another thread, so that a child
 /// that stops reading early cannot block the test).
 fn run(args: &[&str], stdin: Option<Vec<u8>>) -> Output {
-    let mut child = Command::new(BIN)
+    let mut child = Command::new(bin_path())
         .args(args)
         .stdin(if stdin.is_some() {
             Stdio::piped()
@@ -120,7 +122,7 @@ fn fifo_without_writer_fails_at_once() {
     let fifo = dir.join("in.png");
     let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
     assert!(made.success());
-    let mut child = Command::new(BIN)
+    let mut child = Command::new(bin_path())
         .arg(&fifo)
         .stdin(Stdio::null())
         .stdout(Stdio::null())
@@ -250,7 +252,9 @@ fn large_image_under_address_space_limit() {
     // took 128 MB plus copies, and running out aborted (SIGABRT, exit 134).
     let script = "ulimit -v 300000 && exec \"$0\" \"$@\"";
     let out = Command::new("sh")
-        .args(["-c", script, BIN])
+        .arg("-c")
+        .arg(script)
+        .arg(bin_path())
         .arg(&png)
         .args(["--threads", "1", "-q", "-o"])
         .arg(dir.join("out.svg"))
@@ -263,7 +267,9 @@ fn large_image_under_address_space_limit() {
     assert!(svg.contains("<path"), "{svg}");
     // With less room, a clean refusal.
     let out = Command::new("sh")
-        .args(["-c", script, BIN])
+        .arg("-c")
+        .arg(script)
+        .arg(bin_path())
         .arg(&png)
         .args(["--threads", "1", "--max-memory", "1M"])
         .output()

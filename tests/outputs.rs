@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{bin, cli_in, names, repo};
+use common::{bin, bin_path, cli_in, names, repo};
 
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -216,7 +216,7 @@ fn closed_standard_output_is_an_error() {
         let out = Command::new("sh")
             .arg("-c")
             .arg(r#"exec "$0" "$@" >&-"#)
-            .arg(env!("CARGO_BIN_EXE_layertrace"))
+            .arg(bin_path())
             .args([sample.to_str().unwrap(), flag, "-"])
             .output()
             .unwrap();
@@ -228,7 +228,7 @@ fn closed_standard_output_is_an_error() {
     let out = Command::new("sh")
         .arg("-c")
         .arg(r#"exec "$0" "$@" >/dev/null"#)
-        .arg(env!("CARGO_BIN_EXE_layertrace"))
+        .arg(bin_path())
         .args([sample.to_str().unwrap(), "-o", "-", "-q"])
         .output()
         .unwrap();

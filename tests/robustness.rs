@@ -1,6 +1,8 @@
 //! Bad inputs get a one-line error and exit code 1, never a panic or a partial file; the same
 //! input gives byte-identical output across runs and thread counts.
 
+mod common;
+
 use layertrace::{
     decompose, decomposition_json, load_path, svg_document, trace, Convention, JsonHeader,
     LoadOptions, Model, OutlierRule, SvgOptions,
@@ -18,7 +20,7 @@ fn scratch(name: &str) -> tempfile::TempDir {
 
 /// Runs the CLI, returns (exit code, stderr).
 fn cli(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_layertrace"))
+    let out = Command::new(common::bin_path())
         .args(args)
         .output()
         .unwrap();
@@ -178,7 +180,7 @@ fn output_to_redirected_stdout_appends() {
     let out = dir.join("out.svg");
     std::fs::write(&out, "HEAD\n").unwrap();
     let file = std::fs::OpenOptions::new().append(true).open(&out).unwrap();
-    let status = Command::new(env!("CARGO_BIN_EXE_layertrace"))
+    let status = Command::new(common::bin_path())
         .args([
             "samples/glyph_at_dejavusans_cap40.png",
             "-o",

@@ -7,9 +7,17 @@ use layertrace::{piece_outliers, Basis, Contour, OutlierRule, Outliers, Piece, P
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-/// The tool built by Cargo for the tests.
+/// The tool under test: `$LAYERTRACE_BIN` when set (`.ci/run` points it at the binary as
+/// shipped, `scripts/build_release.sh`), else the one Cargo built for the tests.
+pub fn bin_path() -> PathBuf {
+    std::env::var_os("LAYERTRACE_BIN")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_layertrace")))
+}
+
+/// A command running [`bin_path`].
 pub fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_layertrace"))
+    Command::new(bin_path())
 }
 
 /// A path in the repository.
