@@ -168,13 +168,17 @@ impl LinearMap {
     /// `T d`.
     #[cfg(test)]
     pub fn apply(&self, d: &[i64]) -> Vec<f64> {
-        self.apply_with(|j| d[j])
+        let mut out = Vec::new();
+        self.apply_with_into(|j| d[j], &mut out);
+        out
     }
 
-    /// `T d` for the vector with coordinates `d(0), …, d(n−1)` (computed once each).
-    pub fn apply_with(&self, d: impl Fn(usize) -> i64) -> Vec<f64> {
+    /// `T d` for the vector with coordinates `d(0), …, d(n−1)` (computed once each), into
+    /// `out`'s buffer.
+    pub fn apply_with_into(&self, d: impl Fn(usize) -> i64, out: &mut Vec<f64>) {
         let n = self.n;
-        let mut out = vec![0.0; n];
+        out.clear();
+        out.resize(n, 0.0);
         for j in 0..n {
             let dj = d(j) as f64;
             if dj == 0.0 {
@@ -184,7 +188,6 @@ impl LinearMap {
                 *o += self.t[i * n + j] * dj;
             }
         }
-        out
     }
 
     /// `Tᵀ x` into `out`: the direction in lifted coordinates of the direction `x` of the

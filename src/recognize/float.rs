@@ -10,7 +10,7 @@ use super::exact::{
 use super::gjk::{gjk, GjkOutcome, GjkParams, GjkRun};
 use super::proof::Extremes;
 use super::simplex::Simplex;
-use super::support::{FloatSupport, Sets, SupportMap, Tag};
+use super::support::{FloatSupport, Sets, Tag};
 use super::Stats;
 use num_rational::BigRational;
 
@@ -72,7 +72,7 @@ pub(super) fn float_decide(
         y: Vec::with_capacity(n),
     };
     // Warm start: rebuild the kept vertices in the current coordinates.
-    simplex.rebuild(|tag| support.vertex(tag));
+    simplex.rebuild(|tag, point| support.point_into(tag, point));
     let mut params = FLOAT_PARAMS;
     let mut converging = false;
     let mut corrections = 0;

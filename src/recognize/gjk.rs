@@ -110,7 +110,8 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
             return ended(GjkOutcome::Stalled, iteration);
         }
         previous = Some(xx.clone());
-        let Some(s) = support.support_point(&x) else {
+        let buf = simplex.buffer();
+        let Some(s) = support.support_point(&x, buf) else {
             return ended(GjkOutcome::Empty, iteration);
         };
         let xs = dot(&x, &s.point);
@@ -135,6 +136,7 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
             return ended(GjkOutcome::Stalled, iteration);
         }
         simplex.add_vertex(s);
+        simplex.recycle(x);
         // closest_point_to_origin runs remove_vertices on the vertices it no longer needs.
         if simplex.len() > dim + 1 || simplex.closest_point_to_origin(params.eps).is_err() {
             return ended(GjkOutcome::Stalled, iteration);
@@ -160,7 +162,8 @@ fn pick_point<T: Scalar, S: SupportMap<T>>(
 ) -> Result<(), GjkOutcome<T>> {
     if simplex.is_empty() {
         let any = vec![T::zero(); support.dim()];
-        match support.support_point(&any) {
+        let buf = simplex.buffer();
+        match support.support_point(&any, buf) {
             Some(v) => simplex.reset_to(v),
             None => return Err(GjkOutcome::Empty),
         }

@@ -76,7 +76,7 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
         // clearance it leaves anyway.
         GjkOutcome::Stalled => {
             let x = simplex.point(scale.len())?;
-            let s = support.support_point(&x)?;
+            let s = support.support_point(&x, Vec::new())?;
             let xs: f64 = x.iter().zip(&s.point).map(|(a, b)| a * b).sum();
             if !(xs > 0.0 && x.iter().all(|v| v.is_finite())) {
                 return None;

@@ -44,6 +44,15 @@ pub(crate) trait Scalar:
             .zip(b)
             .fold(Self::zero(), |s, (x, y)| s + x.clone() * y.clone())
     }
+    /// [`Scalar::combination`] into `out` (whose buffer `f64` reuses).
+    fn combination_into<P: AsRef<[Self]>>(
+        weights: &[Self],
+        points: &[P],
+        dim: usize,
+        out: &mut Vec<Self>,
+    ) {
+        *out = Self::combination(weights, points, dim);
+    }
     /// `Σ_i λ_i p_i`, in dimension `dim`.
     fn combination<P: AsRef<[Self]>>(weights: &[Self], points: &[P], dim: usize) -> Vec<Self> {
         let mut x = vec![Self::zero(); dim];
@@ -83,6 +92,21 @@ impl Scalar for f64 {
     }
     fn affine_min_norm_into(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
         affine_min_norm_by_elimination(vertices, eps, work)
+    }
+    fn combination_into<P: AsRef<[f64]>>(
+        weights: &[f64],
+        points: &[P],
+        dim: usize,
+        out: &mut Vec<f64>,
+    ) {
+        // The same sums as `combination`, in a reused buffer.
+        out.clear();
+        out.resize(dim, 0.0);
+        for (p, l) in points.iter().zip(weights) {
+            for (xi, pi) in out.iter_mut().zip(p.as_ref()) {
+                *xi += l * pi;
+            }
+        }
     }
 }
 

@@ -49,6 +49,8 @@ pub(crate) struct Simplex<T> {
     weights: Vec<T>,
     /// Scratch space of the minor cycle, kept so that `f64` runs do not allocate.
     work: Work<T>,
+    /// Buffers of dropped vertices and points, handed out again by [`Simplex::buffer`].
+    spare: Vec<Vec<T>>,
 }
 
 /// The minor cycle's scratch: flat row-major matrices, reused between calls.
@@ -85,6 +87,7 @@ impl<T: Scalar> Default for Simplex<T> {
             vertices: Vec::new(),
             weights: Vec::new(),
             work: Work::default(),
+            spare: Vec::new(),
         }
     }
 }
@@ -127,21 +130,23 @@ impl<T: Scalar> Simplex<T> {
             weights: vec![w; k],
             vertices,
             work: Work::default(),
+            spare: Vec::new(),
         }
     }
 
-    /// Rebuilds every vertex from its tag (the same points in other coordinates), keeping
-    /// the weights.
-    pub fn rebuild(&mut self, mut vertex: impl FnMut(&Tag) -> Vertex<T>) {
+    /// Rebuilds every vertex's point from its tag (the same points in other coordinates),
+    /// in its own buffer, keeping the weights.
+    pub fn rebuild(&mut self, mut point: impl FnMut(&Tag, &mut Vec<T>)) {
         for v in self.vertices.iter_mut() {
-            *v = vertex(&v.tag);
+            point(&v.tag, &mut v.point);
         }
     }
 
     /// Removes vertex `i` and spreads the weight equally over the others (a correction of
     /// rounding, outside Algorithm 1: the caller reduces again).
     pub fn drop_vertex(&mut self, i: usize) {
-        self.vertices.remove(i);
+        let v = self.vertices.remove(i);
+        self.recycle(v.point);
         self.weights.remove(i);
         let k = self.vertices.len();
         if k > 0 {
@@ -151,7 +156,9 @@ impl<T: Scalar> Simplex<T> {
 
     /// Removes every vertex.
     pub fn clear(&mut self) {
-        self.vertices.clear();
+        while let Some(v) = self.vertices.pop() {
+            self.recycle(v.point);
+        }
         self.weights.clear();
     }
 
@@ -166,11 +173,26 @@ impl<T: Scalar> Simplex<T> {
     }
 
     /// The current point `x = Σ λ_i w_i` (the closest point once reduced). Empty simplex: `None`.
-    pub fn point(&self, dim: usize) -> Option<Vec<T>> {
+    pub fn point(&mut self, dim: usize) -> Option<Vec<T>> {
         if self.vertices.is_empty() {
             return None;
         }
-        Some(T::combination(&self.weights, &self.vertices, dim))
+        let mut x = self.buffer();
+        T::combination_into(&self.weights, &self.vertices, dim, &mut x);
+        Some(x)
+    }
+
+    /// A buffer for a point: one a dropped vertex or point left, else a new one.
+    pub fn buffer(&mut self) -> Vec<T> {
+        self.spare.pop().unwrap_or_default()
+    }
+
+    /// Keeps `v`'s buffer for [`Simplex::buffer`] (a few: a simplex has at most `n + 1`
+    /// vertices).
+    pub fn recycle(&mut self, v: Vec<T>) {
+        if self.spare.len() < 16 {
+            self.spare.push(v);
+        }
     }
 
     /// addVertex: adds a support point with weight zero (the caller then runs
@@ -240,7 +262,8 @@ impl<T: Scalar> Simplex<T> {
         while i < self.weights.len() {
             if self.weights[i] <= *tiny {
                 self.weights.remove(i);
-                self.vertices.remove(i);
+                let v = self.vertices.remove(i);
+                self.recycle(v.point);
             } else {
                 i += 1;
             }

@@ -82,8 +82,11 @@ impl Sets<'_> {
 pub(crate) trait SupportMap<T> {
     /// Dimension of the points of `D`.
     fn dim(&self) -> usize;
-    /// The support point of `D` in direction `−x`, or `None` if `D` is empty.
-    fn support_point(&mut self, x: &[T]) -> Option<Vertex<T>>;
+    /// The support point of `D` in direction `−x`, or `None` if `D` is empty; `buf` may
+    /// hold its coordinates (a buffer of the caller's simplex, see [`Simplex::buffer`]).
+    ///
+    /// [`Simplex::buffer`]: super::simplex::Simplex::buffer
+    fn support_point(&mut self, x: &[T], buf: Vec<T>) -> Option<Vertex<T>>;
     /// The vertex named by `tag` (to rebuild a warm-start simplex).
     fn vertex(&self, tag: &Tag) -> Vertex<T>;
 }
@@ -186,26 +189,33 @@ pub(crate) struct FloatSupport<'a> {
     pub y: Vec<f64>,
 }
 
+impl FloatSupport<'_> {
+    /// The point of `map·D` named by `tag`, into `out`'s buffer.
+    pub fn point_into(&self, tag: &Tag, out: &mut Vec<f64>) {
+        let (a, b) = self.sets.pair(tag);
+        self.map.apply_with_into(|j| a[j] - b[j], out);
+    }
+}
+
 impl SupportMap<f64> for FloatSupport<'_> {
     fn dim(&self) -> usize {
         self.map.dim()
     }
 
-    fn support_point(&mut self, x: &[f64]) -> Option<Vertex<f64>> {
+    fn support_point(&mut self, x: &[f64], mut buf: Vec<f64>) -> Option<Vertex<f64>> {
         self.map.pull_back_into(x, &mut self.y);
         let inl = float_extremes(self.sets.inliers, &self.y);
         let up = float_extremes(self.sets.upper, &self.y);
         let lo = float_extremes(self.sets.lower, &self.y);
         let tag = pick(inl, up, lo, |a, b| a - b)?;
-        Some(self.vertex(&tag))
+        self.point_into(&tag, &mut buf);
+        Some(Vertex { point: buf, tag })
     }
 
     fn vertex(&self, tag: &Tag) -> Vertex<f64> {
-        let (a, b) = self.sets.pair(tag);
-        Vertex {
-            point: self.map.apply_with(|j| a[j] - b[j]),
-            tag: *tag,
-        }
+        let mut point = Vec::new();
+        self.point_into(tag, &mut point);
+        Vertex { point, tag: *tag }
     }
 }
 
@@ -322,7 +332,11 @@ impl SupportMap<BigRational> for ExactSupport<'_> {
         self.sets.inliers.lifted(0).len()
     }
 
-    fn support_point(&mut self, x: &[BigRational]) -> Option<Vertex<BigRational>> {
+    fn support_point(
+        &mut self,
+        x: &[BigRational],
+        _buf: Vec<BigRational>,
+    ) -> Option<Vertex<BigRational>> {
         let xi = integer_direction(x);
         // Fast path: the reduced direction fits in i64 and no product overflows i128.
         let g = xi
@@ -373,7 +387,7 @@ impl<T: Scalar> SupportMap<T> for ListSupport<T> {
         self.points.first().map_or(0, Vec::len)
     }
 
-    fn support_point(&mut self, x: &[T]) -> Option<Vertex<T>> {
+    fn support_point(&mut self, x: &[T], _buf: Vec<T>) -> Option<Vertex<T>> {
         let mut best: Option<(usize, T)> = None;
         for (i, p) in self.points.iter().enumerate() {
             let v = T::dot(p, x);
