@@ -127,7 +127,7 @@ pub use num_bigint::BigInt;
 pub use num_rational::BigRational;
 pub use outline::{
     contour_path, BorderSource, CommandCounts, ContourPath, EdgeClipping, FallbackCounts,
-    JoinCounts, OutlineOptions, Partition, PartitionBorder, MAX_GRID,
+    JoinCounts, OutlineOptions, Partition, PartitionBorder, DEFAULT_MIN_CURVE_POINTS, MAX_GRID,
 };
 pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
 pub use pixel::Pixel;

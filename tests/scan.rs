@@ -202,9 +202,10 @@ fn cli_adaptive_and_turdsize_give_far_fewer_contours_than_otsu() {
     ]);
     assert!(2 * scan < otsu, "adaptive + turdsize {scan} vs otsu {otsu}");
     let size = |p: &Path| std::fs::metadata(p).unwrap().len();
-    // 378 548 B against 739 525 B when measured (relative path data shrinks both; the
-    // shadows Otsu turns into ink are long borders of many commands).
-    assert!(3 * size(&svg_scan) < 2 * size(&svg_otsu));
+    // 291 760 B against 390 476 B when measured (the shadows Otsu turns into ink are long
+    // ragged borders; since their pieces of fewer than 12 points are drawn as polygons, the
+    // gap is smaller than the 339 445 against 672 879 B before).
+    assert!(5 * size(&svg_scan) < 4 * size(&svg_otsu));
     // --report says what cleaning dropped, as the library counted it.
     let cleaned = load(Threshold::ADAPTIVE, 4).cleaned;
     let line = format!("cleaning: {cleaned}");

@@ -113,6 +113,13 @@ pub struct Args {
     #[arg(long, value_name = "PX", default_value_t = 1.0 / 32.0, value_parser = parse_clearance)]
     pub min_clearance: f64,
 
+    /// Draw a curve piece of fewer than N contour points as its exact polygon, joined to its
+    /// neighbours' and smoothed with them, without trying its curve: on a short piece the
+    /// curve's own command saves nothing (fewer commands and bytes, less time). 0 tries
+    /// every curve; the JSON keeps every piece's equation either way.
+    #[arg(long, value_name = "N", default_value_t = layertrace::DEFAULT_MIN_CURVE_POINTS)]
+    pub min_curve_points: usize,
+
     /// Keep the square corners of one-pixel features (lone pixels, one-pixel spurs and
     /// notches), for pixel art. By default the corners inside a pixel staircase are cut by
     /// half a pixel (a lone pixel becomes a diamond, a spur a spike), which changes no pixel

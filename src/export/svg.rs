@@ -56,6 +56,11 @@ pub struct SvgOptions {
     /// practically never pass the render check); 0 tries every curve. Negative or NaN
     /// values mean the default.
     pub min_clearance: f64,
+    /// A curve piece (not a line) of fewer contour points than this is drawn as its exact
+    /// polygon, joined to its neighbours' and smoothed with them, without trying the curve.
+    /// Default [`DEFAULT_MIN_CURVE_POINTS`](crate::DEFAULT_MIN_CURVE_POINTS) (12:
+    /// on a shorter piece the curve's command saves nothing); 0 tries every curve.
+    pub min_curve_points: usize,
     /// Keep the square corners of one-pixel features (lone pixels, one-pixel spurs and
     /// notches), for pixel art. Default `false`: the corners inside a pixel staircase are
     /// cut by half a pixel (a lone pixel becomes a diamond), which changes no pixel.
@@ -69,6 +74,7 @@ impl Default for SvgOptions {
             grid: OutlineOptions::default().grid,
             tolerance: 0.05,
             min_clearance: crate::outline::DEFAULT_MIN_CLEARANCE,
+            min_curve_points: crate::outline::DEFAULT_MIN_CURVE_POINTS,
             square_corners: false,
         }
     }
@@ -266,6 +272,7 @@ pub(crate) fn outline_options(
         } else {
             SvgOptions::default().min_clearance
         },
+        min_curve_points: opts.min_curve_points,
         grid,
         // Curves are checked in both of tiny-skia's edge modes even where resvg will not
         // clip the document: Chromium draws large paths tile by tile, each tile clipping

@@ -52,6 +52,9 @@ pub struct FallbackCounts {
     /// The border curve passes closer to a pixel centre than the minimum clearance asked
     /// for: the piece is drawn as its polygon.
     pub thin: usize,
+    /// The piece has fewer contour points than the fewest drawn along a curve: drawn as its
+    /// polygon.
+    pub short: usize,
     /// The curve could not be drawn between its junctions (no point near a junction,
     /// `level_curve_path` failed, or the drawing strays from the pixels): drawn as its
     /// polygon.
@@ -72,6 +75,7 @@ impl FallbackCounts {
         self.zero_certificate
             + self.no_polynomial
             + self.thin
+            + self.short
             + self.curve
             + self.rendered
             + self.split
@@ -84,6 +88,7 @@ impl std::ops::AddAssign<&FallbackCounts> for FallbackCounts {
         self.zero_certificate += o.zero_certificate;
         self.no_polynomial += o.no_polynomial;
         self.thin += o.thin;
+        self.short += o.short;
         self.curve += o.curve;
         self.rendered += o.rendered;
         self.split += o.split;

@@ -76,6 +76,8 @@ pub(crate) enum Unused {
     NoPolynomial,
     /// Its curve passes closer than the minimum clearance to a pixel centre.
     Thin,
+    /// It has fewer points than the fewest drawn along a curve.
+    Short,
 }
 
 /// Makes stretches, numbering them.
@@ -119,6 +121,7 @@ impl<'a> Stretcher<'a> {
         basis: &dyn Basis,
         piece: &Piece,
         min_clearance: f64,
+        min_points: usize,
     ) -> (Stretch, Option<Unused>) {
         let id = self.id();
         let mut s = Stretch {
@@ -140,6 +143,9 @@ impl<'a> Stretcher<'a> {
         // two rules give the same outliers (none can be one of its pixels, which lie in the
         // layer, not strictly beside it).
         let straight = self.is_line_basis(basis);
+        if !straight && piece.last + 1 - piece.first < min_points {
+            return (s, Some(Unused::Short));
+        }
         let border = straight
             .then(|| self.closed_border(basis, piece.first, piece.last, false))
             .flatten()
