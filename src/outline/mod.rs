@@ -96,11 +96,12 @@ pub const MAX_GRID: u8 = 6;
 pub const DEFAULT_MIN_CLEARANCE: f64 = 1.0 / 32.0;
 
 /// Default fewest contour points of a curve piece drawn along its curve: a shorter one is
-/// drawn as its exact polygon, which joins its neighbours' and is smoothed with them. Over a
-/// dozen pixels the curve's own command saves nothing: 27 shared samples, conic, 8 499
-/// commands and 190 374 bytes when every curve is tried, 8 353 and 180 772 with 12 (and 5.6%
+/// drawn as its exact polygon, which joins its neighbours' and is smoothed with them. Along
+/// fewer than a dozen pixels the curve's own command saves nothing: 27 shared samples, conic, 8 499
+/// commands and 190 374 bytes when every curve is tried, 8 353 and 180 772 with 12 (and 2.2%
 /// fewer instructions; 400² random noise, whose pieces are mostly short: 0.81 → 0.48 s);
-/// 24 gave 8 279 commands but rounded visibly different shoulders on a 120-px glyph.
+/// 24 gave 8 279 commands but a pointed top and no dip where the ear meets the bowl on the
+/// 120-px glyph g.
 pub const DEFAULT_MIN_CURVE_POINTS: usize = 12;
 
 /// How [`contour_path`] draws.
