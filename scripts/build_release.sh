@@ -5,9 +5,9 @@
 # Usage: scripts/build_release.sh
 #
 # On Linux with glibc (`*-unknown-linux-gnu`) the binary is linked statically (static-pie:
-# glibc, libm and libgcc inside, no dynamic loader at start-up), which saves about 0.5 ms per
-# process on a 2-core VM — 10% of a typical glyph's whole run, measured side by side with
-# `scripts/time_vs_potrace.sh` (BENCHMARKS.md, "Static linking"). Cargo can only ask for that
+# glibc, libm and libgcc inside, no dynamic loader at start-up), which saves 0.4–0.7 ms per
+# process on a 2-core VM — 7–11% of a glyph's whole run, measured side by side with
+# `scripts/time_vs_potrace.sh` (BENCHMARKS.md, "The shipped binary linked statically"). Cargo can only ask for that
 # per target: `--target HOST` with the flag set for that target keeps it away from the
 # proc-macro crates and build scripts, which are built for the host separately. The binary
 # lands in target/HOST/release/. Elsewhere, or when the static link fails (no libc.a), it is

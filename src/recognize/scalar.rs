@@ -44,23 +44,25 @@ pub(crate) trait Scalar:
             .zip(b)
             .fold(Self::zero(), |s, (x, y)| s + x.clone() * y.clone())
     }
-    /// [`Scalar::combination`] into `out` (whose buffer `f64` reuses).
+    /// `Σ_i λ_i p_i`, in dimension `dim`, into `out` (its buffer reused).
     fn combination_into<P: AsRef<[Self]>>(
         weights: &[Self],
         points: &[P],
         dim: usize,
         out: &mut Vec<Self>,
     ) {
-        *out = Self::combination(weights, points, dim);
-    }
-    /// `Σ_i λ_i p_i`, in dimension `dim`.
-    fn combination<P: AsRef<[Self]>>(weights: &[Self], points: &[P], dim: usize) -> Vec<Self> {
-        let mut x = vec![Self::zero(); dim];
+        out.clear();
+        out.resize(dim, Self::zero());
         for (p, l) in points.iter().zip(weights) {
-            for (xi, pi) in x.iter_mut().zip(p.as_ref()) {
+            for (xi, pi) in out.iter_mut().zip(p.as_ref()) {
                 *xi = xi.clone() + l.clone() * pi.clone();
             }
         }
+    }
+    /// `Σ_i λ_i p_i`, in dimension `dim`.
+    fn combination<P: AsRef<[Self]>>(weights: &[Self], points: &[P], dim: usize) -> Vec<Self> {
+        let mut x = Vec::new();
+        Self::combination_into(weights, points, dim, &mut x);
         x
     }
 }
@@ -92,21 +94,6 @@ impl Scalar for f64 {
     }
     fn affine_min_norm_into(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
         affine_min_norm_by_elimination(vertices, eps, work)
-    }
-    fn combination_into<P: AsRef<[f64]>>(
-        weights: &[f64],
-        points: &[P],
-        dim: usize,
-        out: &mut Vec<f64>,
-    ) {
-        // The same sums as `combination`, in a reused buffer.
-        out.clear();
-        out.resize(dim, 0.0);
-        for (p, l) in points.iter().zip(weights) {
-            for (xi, pi) in out.iter_mut().zip(p.as_ref()) {
-                *xi += l * pi;
-            }
-        }
     }
 }
 
@@ -157,6 +144,15 @@ impl Scalar for BigRational {
             sum += if *d == common { t } else { t * (&common / d) };
         }
         BigRational::new(sum, common)
+    }
+    /// [`Scalar::combination`] (below: its common denominator), the buffer replaced.
+    fn combination_into<P: AsRef<[BigRational]>>(
+        weights: &[BigRational],
+        points: &[P],
+        dim: usize,
+        out: &mut Vec<BigRational>,
+    ) {
+        *out = Self::combination(weights, points, dim);
     }
     /// Over the common denominator of the weights when the points are integers (as every
     /// point of `D` is), one reduction per coordinate.
