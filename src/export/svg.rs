@@ -9,10 +9,11 @@
 //! nothing else: each outer border with its holes in the same one, the groups that lie well
 //! inside one of Chromium's raster tiles in a path of that tile (one path on most pages
 //! under 512 px), the rest in one path first (see [`groups`](super::groups): neither
-//! resvg nor Chromium clips a path inside a tile, so its curves are checked one way). Every number is a multiple of `2^-grid` ([`SvgOptions::grid`]) written
-//! exactly (at most `grid` decimals, trailing zeros and leading zeros stripped); each
-//! contour starts with an absolute `M`, the other commands are relative (`l`, `h`, `v`,
-//! `q`, `c`; see [`path_text`](super::path_text)); there is no `A` (arcs are written as the cubics the
+//! resvg nor Chromium clips a path inside a tile, so its curves are checked one way).
+//! Every number is a multiple of `2^-grid` ([`SvgOptions::grid`]) written exactly (at most
+//! `grid` decimals, trailing zeros and leading zeros stripped); each contour starts with an
+//! absolute `M`, the other commands are relative (`l`, `h`, `v`, `q`, `c`; see
+//! [`path_text`](super::path_text)); there is no `A` (arcs are written as the cubics the
 //! outline checked).
 //!
 //! # Fill rule
