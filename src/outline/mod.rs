@@ -336,7 +336,11 @@ fn misplaced_anywhere(
     if wrong.is_empty() {
         wrong = misplaced_pixels(reference, start, commands, first_way, opts.canvas);
     }
-    if wrong.is_empty() && first_way != opts.clipping {
+    // (Lines are drawn the same both ways: a path without curves was just filled.)
+    let curved = commands
+        .iter()
+        .any(|c| !matches!(c, crate::curve::PathCommand::Line(_)));
+    if wrong.is_empty() && first_way != opts.clipping && curved {
         wrong = misplaced_pixels(
             reference,
             start,
