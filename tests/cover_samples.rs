@@ -7,7 +7,6 @@ use layertrace::{
     OutlierRule, Pixel, WorkBudget,
 };
 use std::path::Path;
-use std::process::Command;
 
 mod common;
 use common::{check_pieces, samples};
@@ -63,9 +62,8 @@ fn optimal_never_more_pieces_than_greedy_on_every_sample() {
 
 #[test]
 fn cli_cover_reaches_the_json() {
-    let bin = env!("CARGO_BIN_EXE_layertrace");
     for cover in ["greedy", "optimal"] {
-        let out = Command::new(bin)
+        let out = common::bin()
             .args([
                 "samples/glyph_g_liberationserif_cap120.png",
                 "--json",
@@ -84,7 +82,7 @@ fn cli_cover_reaches_the_json() {
         let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         assert_eq!(v["cover"], cover);
     }
-    let out = Command::new(bin)
+    let out = common::bin()
         .args([
             "samples/glyph_g_liberationserif_cap120.png",
             "--cover",

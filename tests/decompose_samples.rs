@@ -7,7 +7,6 @@ use layertrace::{
     Pixel, Recognition,
 };
 use std::path::Path;
-use std::process::Command;
 use std::sync::Arc;
 
 mod common;
@@ -86,7 +85,7 @@ fn cli_writes_json_and_picture() {
         .unwrap();
     let dir = tmp.path();
     let (json, png) = (dir.join("g.json"), dir.join("g.png"));
-    let out = Command::new(env!("CARGO_BIN_EXE_layertrace"))
+    let out = common::bin()
         .args([
             "samples/glyph_g_liberationserif_cap120.png",
             "--model",

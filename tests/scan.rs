@@ -5,10 +5,11 @@
 use layertrace::{load_path, trace, Convention, LoadOptions, Mask, Threshold};
 use std::collections::VecDeque;
 use std::path::Path;
-use std::process::Command;
+
+mod common;
+use common::bin;
 
 const SCAN: &str = "tests/data/scan_text_1200x800_q70.jpg";
-const BIN: &str = env!("CARGO_BIN_EXE_layertrace");
 
 fn load(threshold: Threshold, turdsize: u64) -> layertrace::Loaded {
     let opts = LoadOptions {
@@ -167,7 +168,7 @@ fn turdsize_drops_exactly_the_small_components_and_holes() {
 
 /// Runs the CLI; returns the contour count of its summary line and standard error.
 fn cli(args: &[&str]) -> (u64, String) {
-    let out = Command::new(BIN).arg(SCAN).args(args).output().unwrap();
+    let out = bin().arg(SCAN).args(args).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr).into_owned();
     assert!(out.status.success(), "{args:?}: {err}");
     let summary = err.lines().last().unwrap_or_default();
@@ -224,7 +225,7 @@ fn bad_values_are_refused_by_the_parser() {
         &["--turdsize", "-1"],
         &["--turdsize", "4", "--compat", "ipol"],
     ] {
-        let out = Command::new(BIN).arg(SCAN).args(args).output().unwrap();
+        let out = bin().arg(SCAN).args(args).output().unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.starts_with("error:"), "{args:?}: {err}");

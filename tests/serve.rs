@@ -4,8 +4,10 @@
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Stdio};
 use std::time::Duration;
+
+mod common;
 
 /// A running `layertrace serve --port 0 ARGS`, killed when dropped.
 struct Server {
@@ -21,7 +23,7 @@ impl Drop for Server {
 }
 
 fn serve(args: &[&str]) -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_layertrace"))
+    let mut child = common::bin()
         .args(["serve", "--port", "0", "--quiet"])
         .args(args)
         .stderr(Stdio::piped())
