@@ -55,6 +55,8 @@ pub(super) struct Fit {
     e: Point,
     /// The rows along the run, summed: `lhs` (upper triangle) and `rhs`.
     along: ([[f64; 4]; 4], [f64; 4]),
+    /// Each sample's terms of its rows that do not depend on its parameter.
+    scaled: Vec<Scaled>,
     rows: Vec<Row>,
     weights: Vec<f64>,
     residuals: Vec<f64>,
@@ -62,9 +64,38 @@ pub(super) struct Fit {
 
 /// The row asking `n · (C − t) = 0` within `tol`, where `C = c₀ A + c₁ P1 + c₂ P2 + c₃ E`.
 fn row(a: Point, e: Point, c: [f64; 4], n: Vec2, t: Point, tol: f64) -> Row {
-    let coef = [c[1] * n.x, c[1] * n.y, c[2] * n.x, c[2] * n.y].map(|v| v / tol);
-    let rhs = (n.dot(t.to_vec2()) - c[0] * n.dot(a.to_vec2()) - c[3] * n.dot(e.to_vec2())) / tol;
-    (coef, rhs)
+    Scaled::new(a, e, n, t, tol).row(c)
+}
+
+/// The terms of a row of [`row`] that do not depend on the weights `c`: `n / tol`, and
+/// `n · t`, `n · A`, `n · E` over `tol`.
+#[derive(Clone, Copy)]
+struct Scaled {
+    n: Vec2,
+    t: f64,
+    a: f64,
+    e: f64,
+}
+
+impl Scaled {
+    fn new(a: Point, e: Point, n: Vec2, t: Point, tol: f64) -> Scaled {
+        let inv = 1.0 / tol;
+        Scaled {
+            n: n * inv,
+            t: n.dot(t.to_vec2()) * inv,
+            a: n.dot(a.to_vec2()) * inv,
+            e: n.dot(e.to_vec2()) * inv,
+        }
+    }
+
+    /// The row with the weights `c` of `A, P1, P2, E`.
+    fn row(&self, c: [f64; 4]) -> Row {
+        let n = self.n;
+        (
+            [c[1] * n.x, c[1] * n.y, c[2] * n.x, c[2] * n.y],
+            self.t - c[0] * self.a - c[3] * self.e,
+        )
+    }
 }
 
 impl Fit {
@@ -84,6 +115,10 @@ impl Fit {
             a,
             e,
             along: (lhs0, rhs0),
+            scaled: samples
+                .iter()
+                .map(|s| Scaled::new(a, e, s.normal, s.t, s.tol))
+                .collect(),
             rows: Vec::with_capacity(2 * samples.len()),
             weights: Vec::with_capacity(2 * samples.len()),
             residuals: Vec::with_capacity(2 * samples.len()),
@@ -93,21 +128,21 @@ impl Fit {
     /// The control points of the cubic that passes, with its polygon of `chords` chords
     /// (none when 0), nearest to the samples (at their parameters `u`) relative to their
     /// tolerances: the largest `|n · (C(u) − T)| / tol` is reduced by Lawson's reweighted
-    /// least squares in `rounds` rounds (see the module documentation). Returns the control
-    /// points and that largest ratio, or `None` when the system is singular.
+    /// least squares in `rounds` rounds (see the module documentation). `samples` are those
+    /// given to [`Fit::new`], in the same order (only their `u` may have moved). Returns the
+    /// control points and that largest ratio, or `None` when the system is singular.
     pub(super) fn fit(
         &mut self,
         samples: &[Sample],
         chords: u32,
         rounds: usize,
     ) -> Option<([Point; 2], f64)> {
-        let (a, e) = (self.a, self.e);
         let rows = &mut self.rows;
         rows.clear();
-        for s in samples {
-            rows.push(row(a, e, bernstein(s.u), s.normal, s.t, s.tol));
+        for (s, k) in samples.iter().zip(&self.scaled) {
+            rows.push(k.row(bernstein(s.u)));
             if chords > 0 {
-                rows.push(row(a, e, chord_weights(s.u, chords), s.normal, s.t, s.tol));
+                rows.push(k.row(chord_weights(s.u, chords)));
             }
         }
         let m = rows.len();
@@ -134,7 +169,11 @@ impl Fit {
             let mut total = 0.0;
             for ((c, r), (ri, wi)) in rows.iter().zip(res.iter_mut().zip(w.iter())) {
                 *ri = (c[0] * p[0] + c[1] * p[1] + c[2] * p[2] + c[3] * p[3] - r).abs();
-                worst = worst.max(*ri);
+                // (Not `max`, whose NaN handling lengthens the loop's dependency chain;
+                // a NaN is skipped either way.)
+                if *ri > worst {
+                    worst = *ri;
+                }
                 total += wi * *ri;
             }
             if best.is_none_or(|(_, b)| worst < b) {
@@ -144,8 +183,9 @@ impl Fit {
             if total <= 1e-12 || round + 1 == rounds {
                 break;
             }
+            let inv = 1.0 / total;
             for (wi, r) in w.iter_mut().zip(res.iter()) {
-                *wi *= r / total;
+                *wi *= r * inv;
             }
         }
         let (p, worst) = best?;
