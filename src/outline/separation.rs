@@ -187,6 +187,15 @@ impl Separation {
         }
     }
 
+    /// Empties both sets (separable again), keeping the hulls' buffers.
+    pub(crate) fn clear(&mut self) {
+        for h in [&mut self.low, &mut self.high] {
+            h.vertices.clear();
+            h.sorted.clear();
+        }
+        self.normals = Normals::All;
+    }
+
     /// True while a line separates the sets strictly.
     pub(crate) fn separable(&self) -> bool {
         self.normals != Normals::None
@@ -310,13 +319,22 @@ mod tests {
 
     /// Adds `points` (each to the low side when its flag says so) one by one, leaving out
     /// repeated points when `skip_repeats`, and calls `check` with the separation and the
-    /// sets after each.
+    /// sets after each. The separation is one used before and cleared (as
+    /// [`super::super::stretch::Stretcher::polygon`] reuses one), which must answer as a new
+    /// one.
     fn replay(
         points: impl IntoIterator<Item = (Dir, bool)>,
         skip_repeats: bool,
         mut check: impl FnMut(&Separation, &[Dir], &[Dir]) -> Result<(), TestCaseError>,
     ) -> Result<(), TestCaseError> {
         let mut s = Separation::new();
+        for p in [[0, 0], [3, 1], [-2, 5]] {
+            s.add_low(p);
+            s.add_high([p[0] + 1, p[1]]);
+        }
+        s.add_high([0, 0]);
+        prop_assert!(!s.separable());
+        s.clear();
         let (mut low, mut high) = (Vec::new(), Vec::new());
         for (p, is_low) in points {
             if skip_repeats && (low.contains(&p) || high.contains(&p)) {

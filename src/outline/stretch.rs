@@ -88,6 +88,9 @@ pub(crate) struct Stretcher<'a> {
     /// Sets [`Stretcher::polygon`] clears and refills for each segment (kept for their
     /// capacity: growing them anew cost 4% of the run).
     scratch: [PixelSet; 3],
+    /// The separation [`Stretcher::polygon`] clears for each segment (kept for its hulls'
+    /// capacity).
+    separation: Separation,
     /// The line model's basis, built once (its functions are owned vectors).
     line: PolynomialBasis,
 }
@@ -100,6 +103,7 @@ impl<'a> Stretcher<'a> {
             next_id: 0,
             tolerance,
             scratch: Default::default(),
+            separation: Separation::new(),
             line: Model::Line.basis(),
         }
     }
@@ -183,8 +187,9 @@ impl<'a> Stretcher<'a> {
         let mut out = Vec::new();
         let mut i = first;
         let [mut in_piece, mut high, mut low] = std::mem::take(&mut self.scratch);
+        let mut sep = std::mem::replace(&mut self.separation, Separation::new());
         while i <= last {
-            let mut sep = Separation::new();
+            sep.clear();
             in_piece.clear();
             high.clear();
             low.clear();
@@ -223,6 +228,7 @@ impl<'a> Stretcher<'a> {
             i = j + 1;
         }
         self.scratch = [in_piece, high, low];
+        self.separation = sep;
         out
     }
 
