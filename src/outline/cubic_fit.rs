@@ -51,8 +51,6 @@ fn add_row(lhs: &mut [[f64; 4]; 4], rhs: &mut [f64; 4], (c, r): &Row, w: f64) {
 /// which stay while the samples' parameters move, summed once, and buffers for the rows
 /// across it, reused by every [`Fit::fit`].
 pub(super) struct Fit {
-    a: Point,
-    e: Point,
     /// The rows along the run, summed: `lhs` (upper triangle) and `rhs`.
     along: ([[f64; 4]; 4], [f64; 4]),
     /// Each sample's terms of its rows that do not depend on its parameter.
@@ -112,8 +110,6 @@ impl Fit {
             add_row(&mut lhs0, &mut rhs0, &r, wa);
         }
         Fit {
-            a,
-            e,
             along: (lhs0, rhs0),
             scaled: samples
                 .iter()
