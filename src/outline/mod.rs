@@ -81,7 +81,9 @@ use cracks::{pieces_valid, Cracks};
 use joins::{build, Memo};
 use merge::merge_lines;
 use nearest::{nearest_points, points_near};
-use render_check::{finely_flattened, misplaced_pixels, misplaced_when_moved, Reference};
+use render_check::{
+    finely_flattened, has_curves, misplaced_pixels, misplaced_when_moved, Reference,
+};
 use smooth::smooth_polygon;
 use stretch::{Drawing, Stretch, Stretcher, Unused};
 use tiles::misplaced_in_tiles;
@@ -336,11 +338,8 @@ fn misplaced_anywhere(
     if wrong.is_empty() {
         wrong = misplaced_pixels(reference, start, commands, first_way, opts.canvas);
     }
-    // (Lines are drawn the same both ways: a path without curves was just filled.)
-    let curved = commands
-        .iter()
-        .any(|c| !matches!(c, crate::curve::PathCommand::Line(_)));
-    if wrong.is_empty() && first_way != opts.clipping && curved {
+    // (A path without curves was just filled: lines are drawn the same both ways.)
+    if wrong.is_empty() && first_way != opts.clipping && has_curves(commands) {
         wrong = misplaced_pixels(
             reference,
             start,

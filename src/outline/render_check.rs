@@ -177,9 +177,18 @@ fn fill_window(
     if let Some(c) = canvas {
         win = win.within(Window::inside(c))?;
     }
-    let curved = commands.iter().any(|c| !matches!(c, PathCommand::Line(_)));
-    let modes = if curved { clipping.modes() } else { &[false] };
+    let modes = if has_curves(commands) {
+        clipping.modes()
+    } else {
+        &[false]
+    };
     Some((win, modes))
+}
+
+/// Whether any command is not a line: tiny-skia draws lines one way only, whatever its edge
+/// clipper does to curves.
+pub(crate) fn has_curves(commands: &[PathCommand]) -> bool {
+    commands.iter().any(|c| !matches!(c, PathCommand::Line(_)))
 }
 
 /// A rectangle of whole pixels: columns `x0..x1`, rows `y0..y1`.
@@ -540,7 +549,7 @@ pub(crate) fn misplaced_when_moved(
 /// drawn exactly by renderers in between (Skia's versions in browsers subdivide curves a
 /// little differently), not only by tiny-skia. `None` when the path has no curve.
 pub(crate) fn finely_flattened(start: Point, commands: &[PathCommand]) -> Option<Vec<PathCommand>> {
-    if commands.iter().all(|c| matches!(c, PathCommand::Line(_))) {
+    if !has_curves(commands) {
         return None;
     }
     let mut out = Vec::with_capacity(commands.len() * 4);
