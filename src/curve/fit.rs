@@ -3,6 +3,7 @@
 use super::command::PathCommand;
 use super::path::LevelPath;
 use super::polynomial::Polynomial;
+use super::power::PowerCubic;
 use super::solve::distance_bound;
 use super::trace::Trace;
 use kurbo::{CubicBez, ParamCurve};
@@ -89,17 +90,10 @@ fn cubic_error(
             return err;
         }
     }
-    // Trace points, at most about 64 of them, evenly spread, in order along the cubic.
-    // Power form B(u) = ((c3 u + c2) u + c1) u + c0, for cheap B, B′ and B″.
-    let (p0, p1, p2, p3) = (
-        c.p0.to_vec2(),
-        c.p1.to_vec2(),
-        c.p2.to_vec2(),
-        c.p3.to_vec2(),
-    );
-    let c1 = (p1 - p0) * 3.0;
-    let c2 = (p2 - p1 * 2.0 + p0) * 3.0;
-    let c3 = p3 - p0 + (p1 - p2) * 3.0;
+    // Trace points, at most about 64 of them, evenly spread, in order along the cubic; the
+    // power form for cheap B, B′ and B″.
+    let w = PowerCubic::new(c);
+    let p0 = w.p0;
     let stride = ((j - i) / 64).max(1);
     let mut t = 0.0;
     for &p in trace.pts[i + 1..j].iter().step_by(stride) {
@@ -107,7 +101,7 @@ fn cubic_error(
         let mut best = f64::INFINITY;
         let mut u: f64 = t;
         for _ in 0..8 {
-            let r = ((c3 * u + c2) * u + c1) * u - q;
+            let r = w.offset(u) - q;
             let d = r.hypot2();
             if d < best {
                 best = d;
@@ -116,8 +110,8 @@ fn cubic_error(
             if d <= err * err {
                 break; // this point cannot raise the maximum
             }
-            let v1 = (c3 * (3.0 * u) + c2 * 2.0) * u + c1;
-            let v2 = c3 * (6.0 * u) + c2 * 2.0;
+            let v1 = w.deriv(u);
+            let v2 = w.second_deriv(u);
             let g = r.dot(v1);
             let h = v1.hypot2() + r.dot(v2);
             let next = if h > 0.0 {

@@ -17,7 +17,8 @@
 //! (`conic.rs`), [`CurveKind`], the kind of a conic or of a piece's level curve (`kind.rs`),
 //! [`PathCommand`] (`command.rs`), the solvers [`project`] and [`intersect_near`]
 //! (`solve.rs`), [`level_curve_path`] (`path.rs`) with its exact arcs (`arcs.rs`), its traces
-//! of the other curves (`trace.rs`) and their cubic fits (`fit.rs`).
+//! of the other curves (`trace.rs`) and their cubic fits (`fit.rs`); a cubic's power form for
+//! Newton's steps (`power.rs`).
 
 mod arcs;
 mod command;
@@ -26,6 +27,7 @@ mod fit;
 mod kind;
 mod path;
 mod polynomial;
+mod power;
 mod solve;
 #[cfg(test)]
 mod test_util;
@@ -36,4 +38,5 @@ pub use conic::{Conic, EllipseParams, HyperbolaParams, ParabolaParams};
 pub use kind::CurveKind;
 pub use path::{level_curve_path, LevelPath};
 pub use polynomial::{Polynomial, MAX_DEGREE};
+pub(crate) use power::PowerCubic;
 pub use solve::{intersect_near, project};

@@ -3,6 +3,7 @@
 //! least squares on the two control points, and the samples' parameters moved to their
 //! nearest points on the curve between fits.
 
+use crate::curve::PowerCubic;
 use kurbo::{CubicBez, ParamCurve, Point, Vec2};
 
 /// The Bernstein weights of `A, P1, P2, E` at `t`.
@@ -236,17 +237,8 @@ pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) 
     } else {
         Vec::new()
     };
-    // The curve in the power basis, `B(u) = P0 + u (c1 + u (c2 + u c3))`: the point and its
-    // two derivatives by Horner's rule.
-    let (p0, p1, p2, p3) = (
-        bez.p0.to_vec2(),
-        bez.p1.to_vec2(),
-        bez.p2.to_vec2(),
-        bez.p3.to_vec2(),
-    );
-    let c1 = (p1 - p0) * 3.0;
-    let c2 = (p2 - p1 * 2.0 + p0) * 3.0;
-    let c3 = p3 - p0 + (p1 - p2) * 3.0;
+    // The point and its two derivatives by Horner's rule.
+    let w = PowerCubic::new(bez);
     let mut at: usize = 0;
     for s in samples {
         let mut u = s.u;
@@ -266,9 +258,9 @@ pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) 
             u = at as f64 / STEPS as f64;
         }
         for _ in 0..2 {
-            let off = p0 + (c1 + (c2 + c3 * u) * u) * u - s.t.to_vec2();
-            let v = c1 + (c2 * 2.0 + c3 * (3.0 * u)) * u;
-            let den = v.hypot2() + off.dot(c2 * 2.0 + c3 * (6.0 * u));
+            let off = w.p0 + w.offset(u) - s.t.to_vec2();
+            let v = w.deriv(u);
+            let den = v.hypot2() + off.dot(w.second_deriv(u));
             if den > 1e-12 {
                 u = (u - off.dot(v) / den).clamp(0.0, 1.0);
             }
