@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::bin_path;
+use common::{bin, bin_path};
 use std::io::{Cursor, Write};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -22,7 +22,7 @@ fn scratch(name: &str) -> tempfile::TempDir {
 /// Runs the CLI with `stdin` as standard input (written from another thread, so that a child
 /// that stops reading early cannot block the test).
 fn run(args: &[&str], stdin: Option<Vec<u8>>) -> Output {
-    let mut child = Command::new(bin_path())
+    let mut child = bin()
         .args(args)
         .stdin(if stdin.is_some() {
             Stdio::piped()
@@ -122,7 +122,7 @@ fn fifo_without_writer_fails_at_once() {
     let fifo = dir.join("in.png");
     let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
     assert!(made.success());
-    let mut child = Command::new(bin_path())
+    let mut child = bin()
         .arg(&fifo)
         .stdin(Stdio::null())
         .stdout(Stdio::null())

@@ -8,7 +8,6 @@ use layertrace::{
     LoadOptions, Model, OutlierRule, SvgOptions,
 };
 use std::path::Path;
-use std::process::Command;
 
 /// A fresh folder of its own (random name, removed when dropped, even when the test fails).
 fn scratch(name: &str) -> tempfile::TempDir {
@@ -20,10 +19,7 @@ fn scratch(name: &str) -> tempfile::TempDir {
 
 /// Runs the CLI, returns (exit code, stderr).
 fn cli(args: &[&str]) -> (i32, String) {
-    let out = Command::new(common::bin_path())
-        .args(args)
-        .output()
-        .unwrap();
+    let out = common::bin().args(args).output().unwrap();
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stderr).into_owned(),
@@ -180,7 +176,7 @@ fn output_to_redirected_stdout_appends() {
     let out = dir.join("out.svg");
     std::fs::write(&out, "HEAD\n").unwrap();
     let file = std::fs::OpenOptions::new().append(true).open(&out).unwrap();
-    let status = Command::new(common::bin_path())
+    let status = common::bin()
         .args([
             "samples/glyph_at_dejavusans_cap40.png",
             "-o",
