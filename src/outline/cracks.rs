@@ -5,6 +5,7 @@ use crate::decompose::Piece;
 use crate::pixel::Pixel;
 use kurbo::Point;
 use rustc_hash::FxHashMap as HashMap;
+use std::cell::OnceCell;
 
 /// The centre of a pixel in SVG space.
 pub(crate) fn centre(p: Pixel) -> Point {
@@ -95,8 +96,49 @@ pub(crate) fn pieces_valid(n: usize, pieces: &[Piece]) -> bool {
 pub(crate) struct Cracks {
     /// The corners, one unit step apart; the last steps back to the first.
     corners: Vec<Point>,
-    /// The indices of the corners at each integer point.
-    at: HashMap<(i64, i64), Vec<usize>>,
+    /// The corners by integer point, built at the first [`Cracks::near`] (many contours
+    /// have no run to fit).
+    index: OnceCell<CornerIndex>,
+}
+
+/// The corners of a [`Cracks`] at each integer point, as chains through one array: no
+/// vector per point (a contour's corners are mostly at different points).
+struct CornerIndex {
+    /// The first corner at each integer point.
+    head: HashMap<(i64, i64), u32>,
+    /// The next corner at the same point as each corner, in increasing order; [`END`] after
+    /// the last.
+    next: Vec<u32>,
+}
+
+/// The end of a chain of [`CornerIndex`].
+const END: u32 = u32::MAX;
+
+impl CornerIndex {
+    /// The index of `corners`: chains in increasing order, built from the last corner back.
+    fn new(corners: &[Point]) -> CornerIndex {
+        let mut head: HashMap<(i64, i64), u32> =
+            HashMap::with_capacity_and_hasher(corners.len(), Default::default());
+        let mut next = vec![END; corners.len()];
+        for (i, p) in corners.iter().enumerate().rev() {
+            let key = (p.x.round() as i64, p.y.round() as i64);
+            // (More corners than `u32` holds would not fit in memory as points.)
+            if let Some(first) = head.insert(key, i as u32) {
+                next[i] = first;
+            }
+        }
+        CornerIndex { head, next }
+    }
+
+    /// The corners at the integer point `key`, in increasing order.
+    fn at(&self, key: (i64, i64)) -> impl Iterator<Item = usize> + '_ {
+        let first = self.head.get(&key).copied().unwrap_or(END);
+        std::iter::successors((first != END).then_some(first), |&i| {
+            let n = self.next[i as usize];
+            (n != END).then_some(n)
+        })
+        .map(|i| i as usize)
+    }
 }
 
 impl Cracks {
@@ -113,29 +155,24 @@ impl Cracks {
                 corners.push(last);
             }
         }
-        let mut at: HashMap<(i64, i64), Vec<usize>> =
-            HashMap::with_capacity_and_hasher(corners.len(), Default::default());
-        for (i, p) in corners.iter().enumerate() {
-            at.entry((p.x.round() as i64, p.y.round() as i64))
-                .or_default()
-                .push(i);
+        Cracks {
+            corners,
+            index: OnceCell::new(),
         }
-        Cracks { corners, at }
     }
 
     /// The corners within one pixel of `p`.
     pub(super) fn near(&self, p: Point) -> Vec<usize> {
+        let index = self.index.get_or_init(|| CornerIndex::new(&self.corners));
         let (x, y) = (p.x.round() as i64, p.y.round() as i64);
         let mut out = Vec::new();
         for dy in -1..=1 {
             for dx in -1..=1 {
-                if let Some(v) = self.at.get(&(x + dx, y + dy)) {
-                    out.extend(
-                        v.iter()
-                            .copied()
-                            .filter(|&i| (self.corners[i] - p).hypot() <= 1.0),
-                    );
-                }
+                out.extend(
+                    index
+                        .at((x + dx, y + dy))
+                        .filter(|&i| (self.corners[i] - p).hypot() <= 1.0),
+                );
             }
         }
         out

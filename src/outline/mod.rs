@@ -277,8 +277,12 @@ pub fn contour_path(
             }
         }
         // And runs along gentle turns become single cubics (the line model stays straight).
+        // (A path of fewer than three commands has no run: see `absorb_runs`.)
         let n = contour.points.len();
-        if n > 1 && basis.dim() > crate::model::Model::Line.basis().dim() {
+        if n > 1
+            && path.commands.len() >= 3
+            && basis.dim() > crate::model::Model::Line.basis().dim()
+        {
             let polyline = crack_polyline(&contour.points, 0, n - 1);
             let cracks = Cracks::new(&polyline);
             if let Some(absorbed) = absorb_runs(
