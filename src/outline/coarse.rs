@@ -132,10 +132,12 @@ fn cover_chain(rows: &[Row], down: bool, out: &mut Vec<Point>) -> Option<()> {
         }
         ok
     };
+    // A segment's separation and the trial copy of each step, their buffers reused.
+    let (mut sep, mut trial) = (Separation::new(), Separation::new());
     let mut i = 0;
     while i < rows.len() {
         let limit = rows.len().min(i + MAX_ROWS);
-        let mut sep = Separation::new();
+        sep.clear();
         let mut j = i;
         while j < limit {
             // The rest of this run (within the limit), by its two ends.
@@ -143,25 +145,25 @@ fn cover_chain(rows: &[Row], down: bool, out: &mut Vec<Point>) -> Option<()> {
             while e < limit && rows[e].s == rows[j].s {
                 e += 1;
             }
-            let mut trial = sep.clone();
+            trial.clone_from(&sep);
             let (a, b) = (ends(&rows[j]), ends(&rows[e - 1]));
             if trial.add_low(a.0)
                 && trial.add_high(a.1)
                 && trial.add_low(b.0)
                 && trial.add_high(b.1)
             {
-                sep = trial;
+                std::mem::swap(&mut sep, &mut trial);
                 j = e;
                 continue;
             }
             // Part of the run fits: row by row.
             while j < e {
                 let (l, h) = ends(&rows[j]);
-                let mut trial = sep.clone();
+                trial.clone_from(&sep);
                 if !(trial.add_low(l) && trial.add_high(h)) {
                     break;
                 }
-                sep = trial;
+                std::mem::swap(&mut sep, &mut trial);
                 j += 1;
             }
             break;

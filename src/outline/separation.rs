@@ -43,11 +43,26 @@ fn same(a: Dir, b: Dir) -> bool {
 
 /// The convex hull of a growing point set: its vertices counter-clockwise, no three on a
 /// line (one or two vertices while the points are one point or on one line).
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 struct Hull {
     vertices: Vec<Dir>,
     /// Scratch for rebuilding.
     sorted: Vec<Dir>,
+}
+
+/// A copy has the vertices only (the scratch is cleared before every use); `clone_from`
+/// keeps the target's buffers.
+impl Clone for Hull {
+    fn clone(&self) -> Hull {
+        Hull {
+            vertices: self.vertices.clone(),
+            sorted: Vec::new(),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Hull) {
+        self.vertices.clone_from(&source.vertices);
+    }
 }
 
 fn sub(a: Dir, b: Dir) -> Dir {
@@ -170,11 +185,28 @@ impl Hull {
 /// and a point added outside is paired with the other hull's vertices only; this keeps
 /// growing a segment linear in its length (pairing every point with every point of the
 /// other side was the polygon's largest cost).
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub(crate) struct Separation {
     low: Hull,
     high: Hull,
     normals: Normals,
+}
+
+/// `clone_from` keeps the target's buffers (a trial copy per step costs no allocation).
+impl Clone for Separation {
+    fn clone(&self) -> Separation {
+        Separation {
+            low: self.low.clone(),
+            high: self.high.clone(),
+            normals: self.normals,
+        }
+    }
+
+    fn clone_from(&mut self, source: &Separation) {
+        self.low.clone_from(&source.low);
+        self.high.clone_from(&source.high);
+        self.normals = source.normals;
+    }
 }
 
 impl Separation {
