@@ -418,6 +418,7 @@ pub(crate) fn affine_min_norm_weights_exact(
 /// (singular).
 fn solve_in_place<T: Scalar>(a: &mut [T], m: usize, pivot_tol: &T, x: &mut Vec<T>) -> bool {
     let w = m + 1;
+    let a = &mut a[..m * w];
     for col in 0..m {
         let mut best = col;
         for r in col + 1..m {
@@ -429,29 +430,33 @@ fn solve_in_place<T: Scalar>(a: &mut [T], m: usize, pivot_tol: &T, x: &mut Vec<T
             return false;
         }
         if best != col {
-            for c in 0..w {
-                a.swap(col * w + c, best * w + c);
-            }
+            let (top, rest) = a.split_at_mut(best * w);
+            top[col * w..(col + 1) * w].swap_with_slice(&mut rest[..w]);
         }
-        for r in col + 1..m {
-            if a[r * w + col] == T::zero() {
+        // The rows below the pivot's, each minus its multiple of the pivot's (by row
+        // slices: the same operations in the same order, without an index per entry).
+        let (top, below) = a.split_at_mut((col + 1) * w);
+        let pivot = &top[col * w + col..];
+        for row in below.chunks_exact_mut(w) {
+            let row = &mut row[col..];
+            if row[0] == T::zero() {
                 continue;
             }
-            let f = a[r * w + col].clone() / a[col * w + col].clone();
-            for c in col..w {
-                let v = a[col * w + c].clone();
-                a[r * w + c] = a[r * w + c].clone() - f.clone() * v;
+            let f = row[0].clone() / pivot[0].clone();
+            for (e, v) in row.iter_mut().zip(pivot) {
+                *e = e.clone() - f.clone() * v.clone();
             }
         }
     }
     x.clear();
     x.resize(m, T::zero());
     for r in (0..m).rev() {
-        let mut s = a[r * w + m].clone();
-        for c in r + 1..m {
-            s = s - a[r * w + c].clone() * x[c].clone();
+        let row = &a[r * w..(r + 1) * w];
+        let mut s = row[m].clone();
+        for (e, xc) in row[r + 1..m].iter().zip(&x[r + 1..]) {
+            s = s - e.clone() * xc.clone();
         }
-        x[r] = s / a[r * w + r].clone();
+        x[r] = s / row[r].clone();
     }
     true
 }
