@@ -109,10 +109,12 @@ impl Hull {
         }
         // Edge i (v[i] → v[i+1]) sees p when p is strictly on its right; `sees` also marks
         // the edges p lies on the line of.
+        // (Consecutive pairs without a division per edge: the last edge closes the hull.)
         let mut sees = 0u128;
         let mut outside = false;
         for i in 0..k {
-            let s = cross(sub(v[(i + 1) % k], v[i]), sub(p, v[i]));
+            let (a, b) = (v[i], if i + 1 < k { v[i + 1] } else { v[0] });
+            let s = cross(sub(b, a), sub(p, a));
             outside |= s < 0;
             if s <= 0 {
                 sees |= 1 << i;
@@ -126,7 +128,7 @@ impl Hull {
         let next = &mut self.sorted;
         next.clear();
         for j in 0..k {
-            let before = (j + k - 1) % k;
+            let before = if j == 0 { k - 1 } else { j - 1 };
             if !(sees >> before & 1 == 1 && sees >> j & 1 == 1) {
                 next.push(v[j]);
                 if sees >> j & 1 == 1 {
