@@ -47,7 +47,7 @@ impl Sides {
 
 /// Stretches of at most this many points find their pixels by scanning the vectors built so
 /// far instead of hashing (most stretches are short; three hash sets per call cost more).
-const SCAN_SIDES: usize = 16;
+const SCAN_SIDES: usize = 8;
 
 /// The pixels a drawing of the points `first..=last` of a closed contour must keep apart:
 /// those points and the foreground beside them (`low`, first the points in order), and the
