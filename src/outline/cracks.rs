@@ -191,9 +191,13 @@ impl Cracks {
             .min_by_key(|&(_, d)| d)?;
         let mut pts = Vec::with_capacity(steps + 2);
         pts.push(a);
-        pts.extend(
-            (0..steps).map(|k| self.corners[(ia + k) % m].midpoint(self.corners[(ia + k + 1) % m])),
-        );
+        // (Corner by corner round the polygon, without a division per crack.)
+        let mut i = ia;
+        for _ in 0..steps {
+            let next = if i + 1 == m { 0 } else { i + 1 };
+            pts.push(self.corners[i].midpoint(self.corners[next]));
+            i = next;
+        }
         pts.push(e);
         Some(pts)
     }
