@@ -532,8 +532,11 @@ fn painted_with(
     for c in crossings {
         starts[c.row as usize + 1] += 1;
     }
-    for r in 0..h as usize {
-        starts[r + 1] += starts[r];
+    // (The running sum in a register: adding to the entry just stored waited for it.)
+    let mut sum = 0;
+    for s in starts.iter_mut() {
+        sum += *s;
+        *s = sum;
     }
     let next = &mut scratch.next;
     next.clear();
