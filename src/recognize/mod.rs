@@ -79,6 +79,7 @@ pub use margin::{max_margin_direction, small_certificate, MarginDirection};
 use num_rational::BigRational;
 use relative::{relative, relative_into};
 use simplex::Simplex;
+use std::cell::OnceCell;
 use std::sync::Arc;
 use support::{Sets, Tag};
 
@@ -101,7 +102,12 @@ pub struct Recognizer {
     /// The last verified certificate (coefficients, extremes) and whether it still holds.
     cert: Option<(Vec<i64>, Extremes)>,
     cert_valid: bool,
-    witness: Option<Witness>,
+    /// The proof of the last [`Outcome::NotDescribed`] answer as found: the pairs by index
+    /// in the sets (their tags) and the exact weights. Most callers never look at it (the
+    /// greedy decomposition only needs the answer), so it becomes a [`Witness`] only when
+    /// asked for, or before a removal renumbers the outliers it names.
+    rejection: Option<(Vec<Tag>, Vec<BigRational>)>,
+    witness: OnceCell<Witness>,
     overflow: bool,
     stats: Stats,
     rel: Vec<i64>,
@@ -132,7 +138,8 @@ impl Recognizer {
             simplex: Simplex::default(),
             cert: None,
             cert_valid: false,
-            witness: None,
+            rejection: None,
+            witness: OnceCell::new(),
             overflow: false,
             stats: Stats::default(),
             rel: vec![0; pd],
@@ -157,7 +164,7 @@ impl Recognizer {
         self.simplex.clear();
         self.cert = None;
         self.cert_valid = false;
-        self.witness = None;
+        self.forget_witness();
         self.overflow = false;
         self.meter.spent = 0;
     }
@@ -275,6 +282,11 @@ impl Recognizer {
     /// recomputed exactly). The warm-start simplex is dropped, since its vertices name
     /// outliers by index.
     pub fn remove_outlier(&mut self, p: &[i64], side: Side) -> bool {
+        // The last answer's witness names outliers by index: made now, before a removal
+        // renumbers them.
+        if self.rejection.is_some() {
+            let _ = self.witness();
+        }
         // A point too far from the origin to be lifted was never added.
         let Some(rel) = relative(p, &self.origin) else {
             return false;
@@ -338,13 +350,26 @@ impl Recognizer {
 
     /// The witness of the last [`Outcome::NotDescribed`] answer.
     pub fn witness(&self) -> Option<&Witness> {
-        self.witness.as_ref()
+        if let Some(w) = self.witness.get() {
+            return Some(w);
+        }
+        let (tags, weights) = self.rejection.as_ref()?;
+        Some(
+            self.witness
+                .get_or_init(|| self.witness_of(tags, weights.clone())),
+        )
+    }
+
+    /// No witness any more (a new query, or new sets).
+    fn forget_witness(&mut self) {
+        self.rejection = None;
+        self.witness.take();
     }
 
     /// Decides whether the current sets are described.
     pub fn recognize(&mut self) -> Outcome {
         self.stats.queries += 1;
-        self.witness = None;
+        self.forget_witness();
         if self.overflow {
             self.stats.undecided += 1;
             return Outcome::Undecided;
@@ -434,7 +459,7 @@ impl Recognizer {
         };
         match answer {
             Some(FloatAnswer::Described(a, e)) => return self.accept(a, e),
-            Some(FloatAnswer::NotDescribed(tags, weights)) => return self.reject(&tags, weights),
+            Some(FloatAnswer::NotDescribed(tags, weights)) => return self.reject(tags, weights),
             None => {}
         }
         if self.meter.exhausted() {
@@ -448,7 +473,7 @@ impl Recognizer {
         let dec = decide_exactly(&sets, &warm, &self.max_abs, &mut self.meter);
         match dec {
             ExactDecision::Described(a, e) => self.accept(a, e),
-            ExactDecision::NotDescribed(tags, weights) => self.reject(&tags, weights),
+            ExactDecision::NotDescribed(tags, weights) => self.reject(tags, weights),
             ExactDecision::Undecided => {
                 self.cert_valid = false;
                 Outcome::Undecided
@@ -460,7 +485,16 @@ impl Recognizer {
         }
     }
 
-    fn reject(&mut self, tags: &[Tag], weights: Vec<BigRational>) -> Outcome {
+    fn reject(&mut self, tags: Vec<Tag>, weights: Vec<BigRational>) -> Outcome {
+        self.rejection = Some((tags, weights));
+        self.witness.take();
+        self.cert_valid = false;
+        Outcome::NotDescribed
+    }
+
+    /// The witness of the pairs `tags` (indices in the current sets) with `weights`, in
+    /// absolute coordinates.
+    fn witness_of(&self, tags: &[Tag], weights: Vec<BigRational>) -> Witness {
         let abs = |rel: &[i64]| -> Vec<i64> {
             rel.iter().zip(&self.origin).map(|(a, b)| a + b).collect()
         };
@@ -472,13 +506,11 @@ impl Recognizer {
                 (inl, out, t.side)
             })
             .collect();
-        self.witness = Some(Witness {
+        Witness {
             origin: self.origin.clone(),
             pairs,
             weights,
-        });
-        self.cert_valid = false;
-        Outcome::NotDescribed
+        }
     }
 }
 

@@ -779,10 +779,33 @@ proptest! {
             }
             Some(FloatAnswer::NotDescribed(tags, weights)) => {
                 prop_assert_eq!(want, Outcome::NotDescribed);
-                r.reject(&tags, weights);
+                r.reject(tags, weights);
                 prop_assert!(witness_holds(basis.as_ref(), r.witness().unwrap(), &s, &up, &lo));
             }
             None => {}
         }
     }
+}
+
+/// The witness of an answer is the proof for the sets it was found in, even when it is
+/// first asked for after a removal has renumbered the outliers it names.
+#[test]
+fn a_witness_outlives_the_removal_of_an_outlier() {
+    let basis: Arc<dyn Basis> = Arc::new(Model::Line.basis());
+    let s = vec![vec![0, 0], vec![4, 0]];
+    // (2, 0) cannot be strictly above a line through the inliers; (10, 10) can, and goes
+    // first, so removing it moves (2, 0) to its index.
+    let up = vec![vec![10, 10], vec![2, 0]];
+    let mut rec = Recognizer::new(basis.clone(), &s[0]).unwrap();
+    for p in &s {
+        rec.add_inlier(p);
+    }
+    for p in &up {
+        rec.add_outlier(p, Side::Upper);
+    }
+    assert_eq!(rec.recognize(), Outcome::NotDescribed);
+    assert!(rec.remove_outlier(&up[0], Side::Upper));
+    let w = rec.witness().expect("the last answer's witness");
+    assert!(witness_holds(basis.as_ref(), w, &s, &up, &[]));
+    assert!(w.pairs.iter().all(|(_, o, _)| *o == up[1]));
 }
