@@ -541,9 +541,13 @@ fn painted_with(
     let next = &mut scratch.next;
     next.clear();
     next.extend_from_slice(starts);
+    // Every place below the crossings' count is written once: the buffer is only grown,
+    // never cleared and zeroed again.
     let by_row = &mut scratch.by_row;
-    by_row.clear();
-    by_row.resize(crossings.len(), (0, 0));
+    if by_row.len() < crossings.len() {
+        by_row.resize(crossings.len(), (0, 0));
+    }
+    let by_row = &mut by_row[..crossings.len()];
     for c in crossings {
         let k = &mut next[c.row as usize];
         by_row[*k] = (c.at, c.winding);
