@@ -350,9 +350,6 @@ impl Recognizer {
 
     /// The witness of the last [`Outcome::NotDescribed`] answer.
     pub fn witness(&self) -> Option<&Witness> {
-        if let Some(w) = self.witness.get() {
-            return Some(w);
-        }
         let (tags, weights) = self.rejection.as_ref()?;
         Some(
             self.witness
