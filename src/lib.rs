@@ -80,6 +80,7 @@ mod model;
 mod outline;
 mod output;
 mod pixel;
+mod pixel_flags;
 mod points;
 mod recognize;
 mod vectorize;

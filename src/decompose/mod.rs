@@ -39,7 +39,8 @@
 
 use crate::contour::{largest_first, Contour};
 use crate::model::{Basis, Model};
-use crate::pixel::{Pixel, PixelSet};
+use crate::pixel::Pixel;
+use crate::pixel_flags::StretchSets;
 use crate::recognize::{Certificate, Recognizer, Stats};
 use rayon::prelude::*;
 use std::sync::atomic::Ordering;
@@ -214,20 +215,19 @@ pub fn piece_outliers(points: &[Pixel], first: usize, last: usize, rule: Outlier
     if last >= points.len() || last < first + 2 {
         return Outliers { right, left };
     }
-    let piece: PixelSet = points[first..=last].iter().copied().collect();
-    let (mut seen_right, mut seen_left) = (PixelSet::default(), PixelSet::default());
+    let mut seen = StretchSets::of(&points[first..=last]);
     for k in first + 1..last {
         let Some(sides) = neighbour_sides(points[k - 1], points[k], points[k + 1]) else {
             continue;
         };
         for (q, r, l) in sides {
-            if rule == OutlierRule::NotInPiece && piece.contains(&q) {
+            if rule == OutlierRule::NotInPiece && seen.is_point(q) {
                 continue;
             }
-            if r && seen_right.insert(q) {
+            if r && seen.first_right(q) {
                 right.push(q);
             }
-            if l && seen_left.insert(q) {
+            if l && seen.first_left(q) {
                 left.push(q);
             }
         }

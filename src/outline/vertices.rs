@@ -20,7 +20,8 @@
 use super::cracks::{centre, crack_polyline};
 use super::ROBUST_SHIFT;
 use crate::decompose::neighbour_sides;
-use crate::pixel::{Pixel, PixelSet};
+use crate::pixel::Pixel;
+use crate::pixel_flags::StretchSets;
 use kurbo::{Point, Vec2};
 
 /// Largest distance (pixels) from the junction of the crossing of two segments' lines tried
@@ -45,67 +46,26 @@ impl Sides {
     }
 }
 
-/// Stretches of at most this many points find their pixels by scanning the vectors built so
-/// far instead of hashing (most stretches are short; three hash sets per call cost more).
-const SCAN_SIDES: usize = 8;
-
 /// The pixels a drawing of the points `first..=last` of a closed contour must keep apart:
 /// those points and the foreground beside them (`low`, first the points in order), and the
 /// background beside every one of them, the two ends included (`high`), each once.
 pub(crate) fn side_pixels(points: &[Pixel], first: usize, last: usize) -> (Vec<Pixel>, Vec<Pixel>) {
-    let len = last + 1 - first;
-    if len <= SCAN_SIDES {
-        let inliers = &points[first..=last];
-        // (A neighbour is never one of the points, so `low` holds it at most once as a
-        // neighbour.)
-        return sides_by(
-            points,
-            first,
-            last,
-            |q| inliers.contains(q),
-            |q, high| !high.contains(q),
-            |q, low| !low.contains(q),
-        );
-    }
-    let with = |c: usize| PixelSet::with_capacity_and_hasher(c, Default::default());
-    let mut inliers = with(len);
-    inliers.extend(points[first..=last].iter().copied());
-    let (mut seen_up, mut seen_low) = (with(len + 4), with(len));
-    sides_by(
-        points,
-        first,
-        last,
-        |q| inliers.contains(q),
-        |q, _| seen_up.insert(*q),
-        |q, _| seen_low.insert(*q),
-    )
-}
-
-/// [`side_pixels`] with its tests: `inlier(q)` whether `q` is one of the points, `new_high(q,
-/// high)` and `new_low(q, low)` whether a neighbour `q` is not yet in `high` or `low`.
-fn sides_by(
-    points: &[Pixel],
-    first: usize,
-    last: usize,
-    inlier: impl Fn(&Pixel) -> bool,
-    mut new_high: impl FnMut(&Pixel, &[Pixel]) -> bool,
-    mut new_low: impl FnMut(&Pixel, &[Pixel]) -> bool,
-) -> (Vec<Pixel>, Vec<Pixel>) {
     let n = points.len();
     let len = last + 1 - first;
+    let mut seen = StretchSets::of(&points[first..=last]);
     let (mut low, mut high) = (Vec::with_capacity(2 * len), Vec::with_capacity(len + 4));
     for k in first..=last {
         low.push(points[k]);
         let (prev, next) = (points[(k + n - 1) % n], points[(k + 1) % n]);
         if let Some(sides) = neighbour_sides(prev, points[k], next) {
             for (q, right, left) in sides {
-                if inlier(&q) {
+                if seen.is_point(q) {
                     continue;
                 }
-                if right && new_high(&q, &high) {
+                if right && seen.first_right(q) {
                     high.push(q);
                 }
-                if left && !right && new_low(&q, &low) {
+                if left && !right && seen.first_left(q) {
                     low.push(q);
                 }
             }
