@@ -560,7 +560,7 @@ fn painted_with(
         if line.is_empty() {
             continue;
         }
-        line.sort_unstable();
+        sort_row(line);
         let base = row * w as usize;
         let mut winding = 0i32;
         let mut from = 0;
@@ -584,6 +584,26 @@ fn painted_with(
     Some(painted)
 }
 
+/// Sorts one row's crossings: by insertion when there are few (most rows of a fill have two
+/// to six: the call of `sort_unstable` cost more than the sorting, 1% of the 3000² sample's
+/// instructions), else by `sort_unstable`. Equal crossings are equal values: the order is
+/// the same either way.
+fn sort_row(line: &mut [(i32, i8)]) {
+    if line.len() > 12 {
+        line.sort_unstable();
+        return;
+    }
+    for i in 1..line.len() {
+        let c = line[i];
+        let mut j = i;
+        while j > 0 && line[j - 1] > c {
+            line[j] = line[j - 1];
+            j -= 1;
+        }
+        line[j] = c;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::render_check::{painted_by_tiny_skia, Reference, Window};
@@ -605,6 +625,17 @@ mod tests {
     }
 
     proptest! {
+        /// A row sorts as `sort_unstable` sorts it, short (by insertion) or long.
+        #[test]
+        fn rows_sort_as_sort_unstable(
+            mut line in prop::collection::vec((-5i32..5, prop::sample::select(vec![-1i8, 1])), 0..30),
+        ) {
+            let mut expected = line.clone();
+            expected.sort_unstable();
+            sort_row(&mut line);
+            prop_assert_eq!(line, expected);
+        }
+
         /// The same pixels as tiny-skia's own fill, curves drawn clipped or not, for random
         /// paths of lines, quadratics and cubics on the 1/64-px grid and off it, against
         /// random crack-like references; paths up to 3 000 px across reach every curve
