@@ -230,13 +230,12 @@ fn solve4(mut m: [[f64; 4]; 4], mut r: [f64; 4]) -> Option<[f64; 4]> {
 /// from their last values; then two Newton steps.
 pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) {
     const STEPS: usize = 64;
-    let along: Vec<Point> = if walk {
-        (0..=STEPS)
-            .map(|k| bez.eval(k as f64 / STEPS as f64))
-            .collect()
-    } else {
-        Vec::new()
-    };
+    let mut along = [Point::ZERO; STEPS + 1];
+    if walk {
+        for (k, p) in along.iter_mut().enumerate() {
+            *p = bez.eval(k as f64 / STEPS as f64);
+        }
+    }
     // The point and its two derivatives by Horner's rule.
     let w = PowerCubic::new(bez);
     let mut at: usize = 0;
@@ -248,10 +247,10 @@ pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) 
             let hi = (at + 16).min(STEPS);
             // The first nearest, each distance computed once.
             let mut nearest = (lo, (along[lo] - s.t).hypot2());
-            for (i, p) in along.iter().enumerate().take(hi + 1).skip(lo + 1) {
+            for (i, p) in along[lo + 1..=hi].iter().enumerate() {
                 let d = (*p - s.t).hypot2();
                 if d < nearest.1 {
-                    nearest = (i, d);
+                    nearest = (lo + 1 + i, d);
                 }
             }
             at = nearest.0;
