@@ -193,7 +193,9 @@ impl Fit {
 /// Rounds of Lawson's reweighting in [`Fit::fit`]: the best of the first few is kept, and few
 /// rounds do best (27 shared samples, conic: 7 904 drawing commands after one, 7 566 after
 /// three, 7 742 after thirty: the later rounds' fits lean on fewer cracks and pass the
-/// renderer check less often).
+/// renderer check less often). [`super::absorb`] spreads them over its refits instead (see
+/// its `LAWSON_SCHEDULE`).
+#[cfg(test)]
 pub(super) const LAWSON_ROUNDS: usize = 3;
 
 /// Tolerance (px) of the rows along the run in [`Fit`].
