@@ -190,14 +190,6 @@ impl Fit {
     }
 }
 
-/// Rounds of Lawson's reweighting in [`Fit::fit`]: the best of the first few is kept, and few
-/// rounds do best (27 shared samples, conic: 7 904 drawing commands after one, 7 566 after
-/// three, 7 742 after thirty: the later rounds' fits lean on fewer cracks and pass the
-/// renderer check less often). [`super::absorb`] spreads them over its refits instead (see
-/// its `LAWSON_SCHEDULE`).
-#[cfg(test)]
-pub(super) const LAWSON_ROUNDS: usize = 3;
-
 /// Tolerance (px) of the rows along the run in [`Fit`].
 const ALONG_TOLERANCE: f64 = 4.0;
 
@@ -299,9 +291,7 @@ mod tests {
                 }
             })
             .collect();
-        let ([q1, q2], worst) = Fit::new(a, e, &samples)
-            .fit(&samples, 0, LAWSON_ROUNDS)
-            .expect("a fit");
+        let ([q1, q2], worst) = Fit::new(a, e, &samples).fit(&samples, 0, 3).expect("a fit");
         assert!(worst < 1e-6, "worst {worst}");
         assert!((q1 - p1).hypot() < 1e-6 && (q2 - p2).hypot() < 1e-6);
     }
