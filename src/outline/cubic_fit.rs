@@ -224,18 +224,15 @@ fn solve4(mut m: [[f64; 4]; 4], mut r: [f64; 4]) -> Option<[f64; 4]> {
 /// from their last values; then two Newton steps.
 pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) {
     const STEPS: usize = 64;
-    let mut along = [Point::ZERO; STEPS + 1];
-    if walk {
-        for (k, p) in along.iter_mut().enumerate() {
-            *p = bez.eval(k as f64 / STEPS as f64);
-        }
-    }
+    // (On the stack, and only made for a walk.)
+    let along: Option<[Point; STEPS + 1]> =
+        walk.then(|| std::array::from_fn(|k| bez.eval(k as f64 / STEPS as f64)));
     // The point and its two derivatives by Horner's rule.
     let w = PowerCubic::new(bez);
     let mut at: usize = 0;
     for s in samples {
         let mut u = s.u;
-        if walk {
+        if let Some(along) = &along {
             // The samples run along the curve: search a little back and further ahead.
             let lo = at.saturating_sub(4);
             let hi = (at + 16).min(STEPS);
