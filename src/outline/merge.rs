@@ -17,7 +17,8 @@
 //! only: they are drawn the same at any origin (see [`super::render_check`]), curves are
 //! not.
 
-use super::render_check::{loop_paints_nothing, EdgeClipping};
+use super::render_check::EdgeClipping;
+use super::robust::loop_paints_nothing;
 use crate::curve::PathCommand;
 use kurbo::Point;
 

@@ -170,7 +170,19 @@ fn fill_window(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Option<(Window, &'static [bool])> {
-    let mut win = Window::round(reference, start, commands);
+    fill_window_moved(reference, start, commands, 0.0, clipping, canvas)
+}
+
+/// [`fill_window`] of the path moved by `shift` px sideways (the reference stays).
+pub(super) fn fill_window_moved(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    shift: f64,
+    clipping: EdgeClipping,
+    canvas: Option<Rect>,
+) -> Option<(Window, &'static [bool])> {
+    let mut win = Window::round_moved(reference, start, commands, shift);
     // The window ends at the pixmap's border: tiny-skia clips the path there as it does in
     // the document (a curve crossing the border is cut at the crossing, which moves its
     // chords), and pixels outside are never drawn.
@@ -205,8 +217,19 @@ impl Window {
     /// on every side (the scan converter keeps clipping off only when the conservatively
     /// rounded bounds are inside the mask).
     pub(super) fn round(reference: &Reference, start: Point, commands: &[PathCommand]) -> Window {
+        Window::round_moved(reference, start, commands, 0.0)
+    }
+
+    /// [`Window::round`] of the path moved by `shift` px sideways (the reference stays).
+    fn round_moved(
+        reference: &Reference,
+        start: Point,
+        commands: &[PathCommand],
+        shift: f64,
+    ) -> Window {
         let (mut lo, mut hi) = (reference.lo, reference.hi);
         let mut grow = |p: Point| {
+            let p = Point::new(p.x + shift, p.y);
             lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
             hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
         };
@@ -349,7 +372,7 @@ fn painted_by(
 }
 
 /// The pixels of `win` at the row-major indices `at`.
-fn pixels_at(win: &Window, at: Vec<usize>) -> Vec<Pixel> {
+pub(super) fn pixels_at(win: &Window, at: Vec<usize>) -> Vec<Pixel> {
     let w = (win.x1 - win.x0) as usize;
     at.into_iter()
         .filter_map(|at| {
@@ -489,85 +512,6 @@ fn difference_path(
         pb.close();
     }
     pb.finish()
-}
-
-/// Whether the closed loop `M anchor lp Z` paints no pixel centre: filled by tiny-skia alone,
-/// in a window of its own and in Chromium's tiles ([`super::tiles`]); when `robust`, also
-/// moved by [`super::ROBUST_SHIFT`] sideways (first: where the plain fill is wrong the moved
-/// one mostly is too) and with its curves finely flattened ([`finely_flattened`]). A change
-/// to a path whose loop (the new commands, then the old ones backwards) paints nothing
-/// changes no pixel: tiny-skia and Skia sum each edge's crossings by itself, and a command
-/// drawn both ways cancels.
-pub(crate) fn loop_paints_nothing(
-    anchor: Point,
-    lp: &[PathCommand],
-    clipping: EdgeClipping,
-    canvas: Option<Rect>,
-    robust: bool,
-) -> bool {
-    // The empty reference at the anchor: the window is the loop's.
-    let nothing = Reference::new(anchor, &[]);
-    let moved = |d: f64| {
-        let v = kurbo::Vec2::new(d, 0.0);
-        let moved: Vec<PathCommand> = lp.iter().map(|c| c.translated(v)).collect();
-        draws_right(&nothing, anchor + v, &moved, clipping, canvas)
-    };
-    (!robust || (moved(super::ROBUST_SHIFT) && moved(-super::ROBUST_SHIFT)))
-        && draws_right(&nothing, anchor, lp, clipping, canvas)
-        && super::tiles::misplaced_in_tiles(&nothing, anchor, lp, canvas).is_empty()
-        && (!robust
-            || finely_flattened(anchor, lp)
-                .is_none_or(|fine| draws_right(&nothing, anchor, &fine, EdgeClipping::Never, None)))
-}
-
-/// Largest distance (pixels) of the polyline [`finely_flattened`] draws to the true curves.
-pub const FINE_FLATTENING: f64 = 0.01;
-
-/// [`misplaced_pixels`] of the path moved by `shift` px sideways, then by `-shift`: the
-/// pixels the first move that misplaces any gets wrong (empty when neither does).
-pub(crate) fn misplaced_when_moved(
-    reference: &Reference,
-    start: Point,
-    commands: &[PathCommand],
-    shift: f64,
-    clipping: EdgeClipping,
-    canvas: Option<Rect>,
-) -> Vec<Pixel> {
-    for d in [shift, -shift] {
-        let v = kurbo::Vec2::new(d, 0.0);
-        let moved: Vec<PathCommand> = commands.iter().map(|c| c.translated(v)).collect();
-        let wrong = misplaced_pixels(reference, start + v, &moved, clipping, canvas);
-        if !wrong.is_empty() {
-            return wrong;
-        }
-    }
-    Vec::new()
-}
-
-/// The path with its curves flattened within [`FINE_FLATTENING`]: what a renderer more
-/// precise than tiny-skia draws. A path both this and tiny-skia's chords draw exactly is
-/// drawn exactly by renderers in between (Skia's versions in browsers subdivide curves a
-/// little differently), not only by tiny-skia. `None` when the path has no curve.
-pub(crate) fn finely_flattened(start: Point, commands: &[PathCommand]) -> Option<Vec<PathCommand>> {
-    if !has_curves(commands) {
-        return None;
-    }
-    let mut out = Vec::with_capacity(commands.len() * 4);
-    let mut path = kurbo::BezPath::new();
-    path.move_to(start);
-    let mut pen = start;
-    for c in commands {
-        for el in c.to_path_els(pen) {
-            path.push(el);
-        }
-        pen = c.end();
-    }
-    kurbo::flatten(path, FINE_FLATTENING, |el| {
-        if let kurbo::PathEl::LineTo(p) = el {
-            out.push(PathCommand::Line(p));
-        }
-    });
-    Some(out)
 }
 
 #[cfg(test)]

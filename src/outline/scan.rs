@@ -26,17 +26,17 @@
 //! from each edge's rows and rounded x alone, which this module computes with the same
 //! integer operations. The test below compares with tiny-skia's own fills on random paths.
 //!
-//! The cuts at y extrema and the edges' set-up are tiny-skia's code (BSD-3-Clause,
-//! Copyright 2006 The Android Open Source Project, 2020 Yevhenii Reizner), with its
-//! geometry helpers called from `tiny-skia-path`.
+//! The edges' set-up is tiny-skia's code (BSD-3-Clause, Copyright 2006 The Android Open
+//! Source Project, 2020 Yevhenii Reizner); the cuts at extrema are in [`super::extrema`].
 
+use super::extrema::{
+    chop_cubic_at_x_extrema, chop_cubic_at_y_extrema, chop_quad_at_x_extrema,
+    chop_quad_at_y_extrema,
+};
 use super::render_check::{Reference, Window};
 use crate::curve::PathCommand;
 use kurbo::Point;
-use tiny_skia_path::path_geometry::{
-    chop_cubic_at2, chop_quad_at, find_unit_quad_roots, new_t_values, valid_unit_divide,
-};
-use tiny_skia_path::{NormalizedF32Exclusive, Point as SkPoint};
+use tiny_skia_path::Point as SkPoint;
 
 /// Most steps of a curve's forward difference: `2^MAX_COEFF_SHIFT` (tiny-skia's).
 const MAX_COEFF_SHIFT: i32 = 6;
@@ -46,13 +46,29 @@ const MAX_COEFF_SHIFT: i32 = 6;
 /// `i32`'s range.
 const MAX_WINDOW: i64 = 8191;
 
-/// A row crossing of an edge: its row in the window, its pixel boundary `round(x)` and its
-/// winding.
+/// A row crossing of an edge: its row in the window, its x in 16.16 (the pixel boundary is
+/// `round(x)`), its winding, and which fills it belongs to ([`Tag`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Crossing {
     row: i32,
-    at: i32,
+    x: i32,
     winding: i8,
+    tag: Tag,
+}
+
+/// Which of the fills of one scan a crossing belongs to: bit `k` for fill `k` (see
+/// [`painted_moved`]: 0 the path as it is, 1 and 2 moved), and [`Tag::MOVES`] when it is the
+/// path's and moves with it (its x is then the unmoved one, the fill's offset added).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Tag(u8);
+
+impl Tag {
+    /// The crossing moves with the fill's offset.
+    const MOVES: u8 = 1 << 7;
+    /// In every fill, moving with the path.
+    const SHARED: Tag = Tag(0b111 | Tag::MOVES);
+    /// The reference's: in every fill, never moved.
+    const FIXED: Tag = Tag(0b111);
 }
 
 /// tiny-skia's `fdot6::div`: `a / b` in 16.16.
@@ -98,6 +114,8 @@ fn cubic_delta_from_line(a: i32, b: i32, c: i32, d: i32) -> i32 {
 struct Crossings {
     out: Vec<Crossing>,
     height: i32,
+    /// What the crossings pushed now belong to.
+    tag: Tag,
     /// Whether curves are also cut where they turn in x (the clipped way: tiny-skia's
     /// edge clipper cuts them so before clipping each part, which inside the window
     /// leaves it as it is).
@@ -119,8 +137,9 @@ impl Crossings {
             if (0..self.height).contains(&row) {
                 self.out.push(Crossing {
                     row,
-                    at: (x + 0x8000) >> 16,
+                    x,
                     winding,
+                    tag: self.tag,
                 });
             }
             x = x.wrapping_add(slope);
@@ -165,6 +184,26 @@ impl Crossings {
                 mono(self, &part);
             }
         }
+    }
+
+    /// Whether a curve of `P` points is cut where it turns in y (or, when the clipper runs,
+    /// in x): an uncut curve's edges move with it (see [`painted_moved`]).
+    fn is_cut<const P: usize, const M: usize>(
+        &self,
+        p: &[SkPoint; P],
+        chop_y: fn(&[SkPoint; P], &mut [SkPoint; M]) -> usize,
+        chop_x: fn(&[SkPoint; P], &mut [SkPoint; M]) -> usize,
+    ) -> bool {
+        let mut mono_y = [SkPoint::zero(); M];
+        if chop_y(p, &mut mono_y) > 0 {
+            return true;
+        }
+        if !self.x_chops {
+            return false;
+        }
+        let part: [SkPoint; P] = std::array::from_fn(|k| mono_y[k]);
+        let mut mono_x = [SkPoint::zero(); M];
+        chop_x(&part, &mut mono_x) > 0
     }
 
     /// A quadratic, cut where it turns in y.
@@ -288,132 +327,6 @@ impl Crossings {
     }
 }
 
-/// A point's coordinate along `axis` (0: x, 1: y).
-fn coord(p: SkPoint, axis: usize) -> f32 {
-    if axis == 0 {
-        p.x
-    } else {
-        p.y
-    }
-}
-
-/// Sets a point's coordinate along `axis` (0: x, 1: y).
-fn set_coord(p: &mut SkPoint, axis: usize, v: f32) {
-    if axis == 0 {
-        p.x = v;
-    } else {
-        p.y = v;
-    }
-}
-
-/// tiny-skia's `chop_quad_at_y_extrema` (`axis` 1) and `chop_quad_at_x_extrema` (`axis`
-/// 0): 0 for one quadratic in `dst[0..3]`, 1 for two in `dst[0..5]`, each monotonic along
-/// the axis.
-fn chop_quad_at_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5], axis: usize) -> usize {
-    let (a, mut b, c) = (
-        coord(src[0], axis),
-        coord(src[1], axis),
-        coord(src[2], axis),
-    );
-    let ab = a - b;
-    let bc = if ab < 0.0 { -(b - c) } else { b - c };
-    if ab == 0.0 || bc < 0.0 {
-        if let Some(t) = valid_unit_divide(a - b, a - b - b + c) {
-            chop_quad_at(src, t, dst);
-            // Flatten the double extremum.
-            let m = coord(dst[2], axis);
-            set_coord(&mut dst[1], axis, m);
-            set_coord(&mut dst[3], axis, m);
-            return 1;
-        }
-        b = if (a - b).abs() < (b - c).abs() { a } else { c };
-    }
-    dst[..3].copy_from_slice(src);
-    set_coord(&mut dst[0], axis, a);
-    set_coord(&mut dst[1], axis, b);
-    set_coord(&mut dst[2], axis, c);
-    0
-}
-
-/// tiny-skia's `chop_quad_at_y_extrema`.
-fn chop_quad_at_y_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5]) -> usize {
-    chop_quad_at_extrema(src, dst, 1)
-}
-
-/// tiny-skia's `chop_quad_at_x_extrema`.
-fn chop_quad_at_x_extrema(src: &[SkPoint; 3], dst: &mut [SkPoint; 5]) -> usize {
-    chop_quad_at_extrema(src, dst, 0)
-}
-
-/// tiny-skia's `chop_cubic_at_y_extrema` (`axis` 1) and `chop_cubic_at_x_extrema` (`axis`
-/// 0): the number of cuts (0 to 2), the cubics in `dst[0..4]`, `dst[3..7]`, `dst[6..10]`,
-/// each monotonic along the axis.
-fn chop_cubic_at_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10], axis: usize) -> usize {
-    let [a, b, c, d] = src.map(|p| coord(p, axis));
-    let mut t_values = new_t_values();
-    let roots = find_unit_quad_roots(
-        d - a + 3.0 * (b - c),
-        2.0 * (a - b - b + c),
-        b - a,
-        &mut t_values,
-    );
-    let t_values = &t_values[..roots];
-    chop_cubic_at(src, t_values, dst);
-    // Flatten the extrema.
-    if !t_values.is_empty() {
-        let m = coord(dst[3], axis);
-        set_coord(&mut dst[2], axis, m);
-        set_coord(&mut dst[4], axis, m);
-        if t_values.len() == 2 {
-            let m = coord(dst[6], axis);
-            set_coord(&mut dst[5], axis, m);
-            set_coord(&mut dst[7], axis, m);
-        }
-    }
-    t_values.len()
-}
-
-/// tiny-skia's `chop_cubic_at_y_extrema`.
-fn chop_cubic_at_y_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10]) -> usize {
-    chop_cubic_at_extrema(src, dst, 1)
-}
-
-/// tiny-skia's `chop_cubic_at_x_extrema`.
-fn chop_cubic_at_x_extrema(src: &[SkPoint; 4], dst: &mut [SkPoint; 10]) -> usize {
-    chop_cubic_at_extrema(src, dst, 0)
-}
-
-/// tiny-skia's `chop_cubic_at`: `src` cut at the increasing `t_values`.
-fn chop_cubic_at(src: &[SkPoint; 4], t_values: &[NormalizedF32Exclusive], dst: &mut [SkPoint]) {
-    let Some(&first) = t_values.first() else {
-        dst[..4].copy_from_slice(src);
-        return;
-    };
-    let mut t = first;
-    let mut tmp = *src;
-    let mut offset = 0;
-    for i in 0..t_values.len() {
-        chop_cubic_at2(&tmp, t, &mut dst[offset..]);
-        if i == t_values.len() - 1 {
-            break;
-        }
-        offset += 3;
-        tmp.copy_from_slice(&dst[offset..offset + 4]);
-        match valid_unit_divide(
-            t_values[i + 1].get() - t_values[i].get(),
-            1.0 - t_values[i].get(),
-        ) {
-            Some(n) => t = n,
-            None => {
-                dst[offset + 4] = tmp[3];
-                dst[offset + 5] = tmp[3];
-                dst[offset + 6] = tmp[3];
-                break;
-            }
-        }
-    }
-}
-
 /// The row-major indices, in the window `win`, of the pixels tiny-skia paints filling the
 /// path `M start commands Z` followed by `reference` reversed (see
 /// [`super::render_check::painted_in`]), curves drawn `clipped` or not. Inside the window
@@ -430,9 +343,73 @@ pub(super) fn painted(
     win: &Window,
     clipped: bool,
 ) -> Option<Vec<usize>> {
+    let [plain, _, _] = scanned(reference, start, commands, win, clipped, None)?;
+    Some(plain)
+}
+
+/// [`painted`] three times from one set of edges: the path as it is, then moved by `shift`
+/// px sideways, then by `−shift` (the reference stays), each in the same window `win` — as
+/// three calls of [`painted`] with the moved paths give them, when the moved paths have that
+/// window too.
+///
+/// A line moved by `k/64` px (`shift`; `k` whole) is the same edge `k/64` px aside: its ends
+/// in 26.6 fixed point move by `k` exactly and its slope and rows stay, so each row crossing
+/// moves by `k · 2^10` in 16.16. So does a quadratic or cubic that is not cut where it
+/// turns (its forward differences are differences of its points), but one that is cut is
+/// cut in `f32` at points whose rounding depends on where it lies: those are scanned once
+/// for each fill. The reference's crossings are shared as they are.
+///
+/// The moved fills are scanned first, then the path as it is; with `first_only`, the first
+/// that paints a pixel ends the scan (the fills after it are left empty).
+///
+/// Returns `None` where [`painted`] would for any of the three paths, and when a moved
+/// point is not the point moved exactly in `f32` (off the 1/64 grid, or `shift` not a
+/// multiple of 1/64).
+pub(super) fn painted_moved(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+    clipped: bool,
+    shift: f64,
+    first_only: bool,
+) -> Option<[Vec<usize>; 3]> {
+    scanned(
+        reference,
+        start,
+        commands,
+        win,
+        clipped,
+        Some((shift, first_only)),
+    )
+}
+
+/// [`painted`] (`shift` `None`: one fill, the other two empty) or [`painted_moved`], with
+/// the thread's buffers.
+fn scanned(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    win: &Window,
+    clipped: bool,
+    shift: Option<(f64, bool)>,
+) -> Option<[Vec<usize>; 3]> {
     SCRATCH.with(|cell| {
         let mut scratch = cell.take();
-        let painted = painted_with(&mut scratch, reference, start, commands, win, clipped);
+        let (d, first_only) = shift.unwrap_or((0.0, false));
+        let scan = Scan {
+            reference,
+            start,
+            commands,
+            win,
+            clipped,
+            shift: d,
+            first_only,
+        };
+        let painted = match shift {
+            None => painted_with::<1>(&mut scratch, scan),
+            Some(_) => painted_with::<3>(&mut scratch, scan),
+        };
         if scratch.out.capacity() <= MAX_KEPT {
             cell.replace(scratch);
         }
@@ -454,8 +431,10 @@ struct Scratch {
     starts: Vec<usize>,
     /// The next free place of each row in `by_row`.
     next: Vec<usize>,
-    /// `(round(x), winding)` of the crossings, row by row.
-    by_row: Vec<(i32, i8)>,
+    /// `(x, winding, tag)` of the crossings, row by row.
+    by_row: Vec<(i32, i8, Tag)>,
+    /// One row's `(round(x), winding, _)` in one fill.
+    line: Vec<(i32, i8, ())>,
 }
 
 thread_local! {
@@ -463,61 +442,129 @@ thread_local! {
     static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
 }
 
-/// [`painted`] with the buffers of `scratch`.
-fn painted_with(
-    scratch: &mut Scratch,
-    reference: &Reference,
+/// What [`painted_with`] scans.
+struct Scan<'a> {
+    reference: &'a Reference,
     start: Point,
-    commands: &[PathCommand],
-    win: &Window,
+    commands: &'a [PathCommand],
+    win: &'a Window,
+    /// Curves drawn the clipped way.
     clipped: bool,
-) -> Option<Vec<usize>> {
+    /// How far the moved fills move the path (px).
+    shift: f64,
+    /// Whether the first moved fill that paints a pixel ends the scan.
+    first_only: bool,
+}
+
+/// A point of the path as tiny-skia gets it in each fill of [`painted_with`]: as it is,
+/// moved by `d[1]`, moved by `d[2]`.
+type Moved = [SkPoint; 3];
+
+/// [`scanned`] with the buffers of `scratch`: `FILLS` 1 (the path as it is) or 3 (also
+/// moved by `±shift`).
+fn painted_with<const FILLS: usize>(
+    scratch: &mut Scratch,
+    scan: Scan<'_>,
+) -> Option<[Vec<usize>; 3]> {
+    let Scan {
+        reference,
+        start,
+        commands,
+        win,
+        clipped,
+        shift,
+        first_only,
+    } = scan;
     let (w, h) = (win.x1 - win.x0, win.y1 - win.y0);
     if !(1..=MAX_WINDOW).contains(&w) || !(1..=MAX_WINDOW).contains(&h) {
         return None;
     }
     let (wf, hf) = (w as f64, h as f64);
     let (dx, dy) = (win.x0 as f64, win.y0 as f64);
-    // As `difference_path` hands the points to tiny-skia.
-    let f = |p: Point| -> Option<SkPoint> {
+    // The fills: the path as it is, then moved by ±shift (k/64 px, k · 2^10 in 16.16).
+    let fills = FILLS;
+    let k64 = {
+        let k = shift * 64.0;
+        (k.fract() == 0.0 && k.abs() <= 64.0).then_some(k as i32)?
+    };
+    let d = [0.0, f64::from(k64) / 64.0, -f64::from(k64) / 64.0];
+    let offsets = [0, k64 << 10, -(k64 << 10)];
+    // As `difference_path` hands the points to tiny-skia (a moved path is moved first).
+    let inside = |x: f64, y: f64| x >= 1.0 && y >= 1.0 && x <= wf - 1.0 && y <= hf - 1.0;
+    let at = |p: Point| -> Option<SkPoint> {
         let (x, y) = (p.x - dx, p.y - dy);
-        (x >= 1.0 && y >= 1.0 && x <= wf - 1.0 && y <= hf - 1.0)
-            .then(|| SkPoint::from_xy(x as f32, y as f32))
+        inside(x, y).then(|| SkPoint::from_xy(x as f32, y as f32))
+    };
+    let moved = |p: Point| -> Option<Moved> {
+        let plain = at(p)?;
+        let mut out = [plain; 3];
+        for k in 1..fills {
+            let (x, y) = ((p.x + d[k]) - dx, p.y - dy);
+            if !inside(x, y) || f64::from(x as f32) != f64::from(plain.x) + d[k] {
+                return None;
+            }
+            out[k].x = x as f32;
+        }
+        Some(out)
     };
     scratch.out.clear();
     let mut edges = Crossings {
         out: std::mem::take(&mut scratch.out),
         height: h as i32,
+        tag: Tag::SHARED,
         x_chops: clipped,
     };
-    let first = f(start)?;
+    let first = moved(start)?;
     let mut pen = first;
     for c in commands {
         pen = match *c {
             PathCommand::Line(p) => {
-                let q = f(p)?;
-                edges.line(pen, q);
+                let q = moved(p)?;
+                edges.line(pen[0], q[0]);
                 q
             }
             PathCommand::Quad(a, p) => {
-                let (a, q) = (f(a)?, f(p)?);
-                edges.quad([pen, a, q]);
+                let (a, q) = (moved(a)?, moved(p)?);
+                let each = |k: usize| [pen[k], a[k], q[k]];
+                if fills > 1
+                    && edges.is_cut(&each(0), chop_quad_at_y_extrema, chop_quad_at_x_extrema)
+                {
+                    for k in 0..fills {
+                        edges.tag = Tag(1 << k);
+                        edges.quad(each(k));
+                    }
+                    edges.tag = Tag::SHARED;
+                } else {
+                    edges.quad(each(0));
+                }
                 q
             }
             PathCommand::Cubic(a, b, p) => {
-                let (a, b, q) = (f(a)?, f(b)?, f(p)?);
-                edges.cubic([pen, a, b, q]);
+                let (a, b, q) = (moved(a)?, moved(b)?, moved(p)?);
+                let each = |k: usize| [pen[k], a[k], b[k], q[k]];
+                if fills > 1
+                    && edges.is_cut(&each(0), chop_cubic_at_y_extrema, chop_cubic_at_x_extrema)
+                {
+                    for k in 0..fills {
+                        edges.tag = Tag(1 << k);
+                        edges.cubic(each(k));
+                    }
+                    edges.tag = Tag::SHARED;
+                } else {
+                    edges.cubic(each(0));
+                }
                 q
             }
             PathCommand::Arc(_) => return None,
         };
     }
-    edges.line(pen, first);
+    edges.line(pen[0], first[0]);
     // The reference reversed: from its start through its vertices backwards, closed.
-    let rstart = f(reference.start)?;
+    edges.tag = Tag::FIXED;
+    let rstart = at(reference.start)?;
     let mut pen = rstart;
     for &p in reference.vertices.iter().rev() {
-        let q = f(p)?;
+        let q = at(p)?;
         edges.line(pen, q);
         pen = q;
     }
@@ -545,58 +592,103 @@ fn painted_with(
     // never cleared and zeroed again.
     let by_row = &mut scratch.by_row;
     if by_row.len() < crossings.len() {
-        by_row.resize(crossings.len(), (0, 0));
+        by_row.resize(crossings.len(), (0, 0, Tag(0)));
     }
     let by_row = &mut by_row[..crossings.len()];
+    // One fill: each crossing rounded once, each row sorted in place.
+    let round = |x: i32| x.wrapping_add(0x8000) >> 16;
     for c in crossings {
         let k = &mut next[c.row as usize];
-        by_row[*k] = (c.at, c.winding);
+        by_row[*k] = (if fills == 1 { round(c.x) } else { c.x }, c.winding, c.tag);
         *k += 1;
     }
     // Runs of each row in order: the indices come out sorted.
-    let mut painted = Vec::new();
-    for (row, span) in starts.windows(2).enumerate() {
-        let line = &mut by_row[span[0]..span[1]];
-        if line.is_empty() {
-            continue;
-        }
-        sort_row(line);
-        let base = row * w as usize;
-        let mut winding = 0i32;
-        let mut from = 0;
-        for &(at, wi) in line.iter() {
-            if winding == 0 {
-                from = at;
-            }
-            winding += i32::from(wi);
-            if winding == 0 {
-                let (a, b) = (from.clamp(0, w as i32), at.clamp(0, w as i32));
-                painted.extend((a..b).map(|x| base + x as usize));
+    let mut painted: [Vec<usize>; 3] = Default::default();
+    if FILLS == 1 {
+        for (row, span) in starts.windows(2).enumerate() {
+            let crossings = &mut by_row[span[0]..span[1]];
+            if !crossings.is_empty() {
+                sort_row(crossings);
+                let runs = crossings.iter().map(|&(at, winding, _)| (at, winding));
+                paint_runs(runs, row * w as usize, w as i32, &mut painted[0]);
             }
         }
-        // As the walker, a run still open at the row's end goes to the window's side (the
-        // windings of a closed path's row sum to zero, so it does not happen).
-        if winding != 0 {
-            let a = from.clamp(0, w as i32);
-            painted.extend((a..w as i32).map(|x| base + x as usize));
+        return Some(painted);
+    }
+    // The moved fills first, each over every row: the first that paints a pixel may end
+    // the check.
+    let line = &mut scratch.line;
+    for fill in [1, 2, 0] {
+        let bit = 1 << fill;
+        for (row, span) in starts.windows(2).enumerate() {
+            let crossings = &by_row[span[0]..span[1]];
+            if crossings.is_empty() {
+                continue;
+            }
+            line.clear();
+            for &(x, winding, tag) in crossings {
+                if tag.0 & bit != 0 {
+                    let x = if tag.0 & Tag::MOVES != 0 {
+                        x.wrapping_add(offsets[fill])
+                    } else {
+                        x
+                    };
+                    line.push((round(x), winding, ()));
+                }
+            }
+            sort_row(line);
+            let runs = line.iter().map(|&(at, winding, _)| (at, winding));
+            paint_runs(runs, row * w as usize, w as i32, &mut painted[fill]);
+        }
+        if first_only && !painted[fill].is_empty() {
+            break;
         }
     }
     Some(painted)
 }
 
-/// Sorts one row's crossings: by insertion when there are few (most rows of a fill have two
-/// to six: the call of `sort_unstable` cost more than the sorting, 1% of the 3000² sample's
-/// instructions), else by `sort_unstable`. Equal crossings are equal values: the order is
-/// the same either way.
-fn sort_row(line: &mut [(i32, i8)]) {
+/// Appends to `painted` the pixels of one row (its first at `base`, `w` wide) over which the
+/// running sum of the windings of its crossings `(round(x), winding)`, in order, is not
+/// zero: tiny-skia's walker under the nonzero rule.
+fn paint_runs(
+    crossings: impl Iterator<Item = (i32, i8)>,
+    base: usize,
+    w: i32,
+    painted: &mut Vec<usize>,
+) {
+    let mut winding = 0i32;
+    let mut from = 0;
+    for (at, wi) in crossings {
+        if winding == 0 {
+            from = at;
+        }
+        winding += i32::from(wi);
+        if winding == 0 {
+            let (a, b) = (from.clamp(0, w), at.clamp(0, w));
+            painted.extend((a..b).map(|x| base + x as usize));
+        }
+    }
+    // As the walker, a run still open at the row's end goes to the window's side (the
+    // windings of a closed path's row sum to zero, so it does not happen).
+    if winding != 0 {
+        let a = from.clamp(0, w);
+        painted.extend((a..w).map(|x| base + x as usize));
+    }
+}
+
+/// Sorts one row's crossings by their first field, `round(x)` (the order of equal ones does
+/// not change the runs): by insertion when there are few (most rows of a fill have two to
+/// six: the call of `sort_unstable` cost more than the sorting, 1% of the 3000² sample's
+/// instructions), else by `sort_unstable_by_key`.
+fn sort_row<T: Copy, U: Copy>(line: &mut [(i32, T, U)]) {
     if line.len() > 12 {
-        line.sort_unstable();
+        line.sort_unstable_by_key(|c| c.0);
         return;
     }
     for i in 1..line.len() {
         let c = line[i];
         let mut j = i;
-        while j > 0 && line[j - 1] > c {
+        while j > 0 && line[j - 1].0 > c.0 {
             line[j] = line[j - 1];
             j -= 1;
         }
@@ -625,15 +717,19 @@ mod tests {
     }
 
     proptest! {
-        /// A row sorts as `sort_unstable` sorts it, short (by insertion) or long.
+        /// A row comes out in order of its first field, the same crossings, short (by
+        /// insertion) or long.
         #[test]
-        fn rows_sort_as_sort_unstable(
-            mut line in prop::collection::vec((-5i32..5, prop::sample::select(vec![-1i8, 1])), 0..30),
+        fn rows_sort_by_their_boundaries(
+            line in prop::collection::vec((-5i32..5, prop::sample::select(vec![-1i8, 1]), 0u8..3), 0..30),
         ) {
-            let mut expected = line.clone();
-            expected.sort_unstable();
-            sort_row(&mut line);
-            prop_assert_eq!(line, expected);
+            let mut sorted = line.clone();
+            sort_row(&mut sorted);
+            prop_assert!(sorted.windows(2).all(|w| w[0].0 <= w[1].0));
+            let (mut a, mut b) = (line, sorted.clone());
+            a.sort_unstable();
+            b.sort_unstable();
+            prop_assert_eq!(a, b);
         }
 
         /// The same pixels as tiny-skia's own fill, curves drawn clipped or not, for random
@@ -668,6 +764,71 @@ mod tests {
                 .collect();
             prop_assert_eq!(ours, theirs);
         }
+    }
+
+    proptest! {
+        /// The three fills of one scan are the fills of the path as it is and moved by
+        /// `±shift` in the same window, for random paths on the 1/64-px grid (curves cut
+        /// where they turn included), clipped or not; with `first_only`, the same up to the
+        /// first moved fill that paints, and nothing after it.
+        #[test]
+        fn moved_fills_are_the_moved_paths_fills(
+            path in prop::collection::vec((0u8..3, any::<[u16; 6]>()), 1..8),
+            start in any::<[u16; 2]>(),
+            refp in prop::collection::vec((0i32..10, 0i32..10), 3..8),
+            off in prop::sample::select(vec![2.0, 2.25, 41.0]),
+            clipped in any::<bool>(),
+            scale in prop::sample::select(vec![1.0, 1.0, 30.0, 300.0]),
+            k in 1u8..3,
+        ) {
+            let commands: Vec<PathCommand> =
+                path.iter().map(|&(kind, v)| command(kind, v, 64.0, off, scale)).collect();
+            let PathCommand::Line(start) = command(0, [start[0], start[1], 0, 0, 0, 0], 64.0, off, scale)
+            else {
+                unreachable!()
+            };
+            let r = |&(x, y): &(i32, i32)| Point::new(f64::from(x) + off, f64::from(y) + off);
+            let rc: Vec<PathCommand> = refp[1..].iter().map(|p| PathCommand::Line(r(p))).collect();
+            let reference = Reference::new(r(&refp[0]), &rc);
+            let win = Window::round(&reference, start, &commands);
+            let shift = f64::from(k) / 64.0;
+            let expected: Vec<Vec<usize>> = [0.0, shift, -shift]
+                .iter()
+                .map(|&d| {
+                    let v = kurbo::Vec2::new(d, 0.0);
+                    let moved: Vec<PathCommand> = commands.iter().map(|c| c.translated(v)).collect();
+                    painted(&reference, start + v, &moved, &win, clipped).expect("inside")
+                })
+                .collect();
+            let all = painted_moved(&reference, start, &commands, &win, clipped, shift, false)
+                .expect("inside, on the grid");
+            prop_assert_eq!(all.to_vec(), expected.clone());
+            let first = painted_moved(&reference, start, &commands, &win, clipped, shift, true)
+                .expect("inside, on the grid");
+            let mut ended = false;
+            for fill in [1, 2, 0] {
+                if ended {
+                    prop_assert!(first[fill].is_empty());
+                } else {
+                    prop_assert_eq!(&first[fill], &expected[fill]);
+                    ended = !expected[fill].is_empty();
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn moved_fills_need_a_shift_on_the_grid() {
+        let start = Point::new(5.0, 5.0);
+        let reference = Reference::new(start, &[PathCommand::Line(Point::new(6.0, 5.0))]);
+        let on = [
+            PathCommand::Line(Point::new(6.0, 6.5)),
+            PathCommand::Line(Point::new(5.0, 6.0)),
+        ];
+        let win = Window::round(&reference, start, &on);
+        assert!(painted_moved(&reference, start, &on, &win, false, 1.0 / 64.0, false).is_some());
+        // A shift off the grid moves edges by what 16.16 does not hold.
+        assert!(painted_moved(&reference, start, &on, &win, false, 0.01, false).is_none());
     }
 
     #[test]

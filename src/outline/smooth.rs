@@ -27,7 +27,8 @@
 //! must bend enough that the renderer does not draw them in two chords.
 
 use super::builder::Builder;
-use super::render_check::{loop_paints_nothing, misplaced_pixels, EdgeClipping, Reference};
+use super::render_check::{misplaced_pixels, EdgeClipping, Reference};
+use super::robust::loop_paints_nothing;
 use crate::curve::PathCommand;
 use kurbo::{ParamCurve, ParamCurveNearest, Point, Vec2};
 
