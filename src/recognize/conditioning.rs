@@ -91,6 +91,9 @@ const RIDGE: f64 = 1e-12;
 pub(crate) struct LinearMap {
     n: usize,
     t: Vec<f64>,
+    /// `T` is diagonal: its products skip the zeros (every support point of a diagonal run
+    /// pulled its direction back through all `n²` entries).
+    diagonal: bool,
 }
 
 impl LinearMap {
@@ -101,7 +104,11 @@ impl LinearMap {
         for (i, s) in scale.iter().enumerate() {
             t[i * n + i] = *s;
         }
-        LinearMap { n, t }
+        LinearMap {
+            n,
+            t,
+            diagonal: true,
+        }
     }
 
     /// The whitening map of the points summarized by `moments` (see the module docs), or
@@ -149,9 +156,11 @@ impl LinearMap {
                 t[i * n + j] = v / l[i * n + i];
             }
         }
-        t.iter()
-            .all(|v| v.is_finite())
-            .then_some(LinearMap { n, t })
+        t.iter().all(|v| v.is_finite()).then_some(LinearMap {
+            n,
+            t,
+            diagonal: false,
+        })
     }
 
     /// Fewest points for [`LinearMap::whitening`] in dimension `n`: a few more than the
@@ -178,6 +187,10 @@ impl LinearMap {
     pub fn apply_with_into(&self, d: impl Fn(usize) -> i64, out: &mut Vec<f64>) {
         let n = self.n;
         out.clear();
+        if self.diagonal {
+            out.extend((0..n).map(|j| self.t[j * n + j] * d(j) as f64));
+            return;
+        }
         out.resize(n, 0.0);
         for j in 0..n {
             let dj = d(j) as f64;
@@ -195,6 +208,10 @@ impl LinearMap {
     pub fn pull_back_into(&self, x: &[f64], out: &mut Vec<f64>) {
         let n = self.n;
         out.clear();
+        if self.diagonal {
+            out.extend(x.iter().enumerate().map(|(i, xi)| self.t[i * n + i] * xi));
+            return;
+        }
         out.resize(n, 0.0);
         for (i, xi) in x.iter().enumerate() {
             for (o, a) in out.iter_mut().zip(&self.t[i * n..(i + 1) * n]) {
