@@ -309,11 +309,7 @@ pub(crate) fn affine_min_norm_by_elimination<T: Scalar>(
             .extend(v.point.iter().zip(w0).map(|(a, b)| a.clone() - b.clone()));
     }
     let m = k - 1;
-    let dot = |a: &[T], b: &[T]| {
-        a.iter()
-            .zip(b)
-            .fold(T::zero(), |s, (x, y)| s + x.clone() * y.clone())
-    };
+    let dot = T::dot;
     let edges = &work.edges;
     let edge = |i: usize| &edges[i * n..(i + 1) * n];
     // Augmented matrix [EᵀE | −Eᵀw0], m × (m+1), row-major.
