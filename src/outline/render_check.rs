@@ -170,30 +170,35 @@ fn fill_window(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Option<(Window, &'static [bool])> {
-    fill_window_moved(reference, start, commands, 0.0, clipping, canvas)
+    let path = PathBounds::of(start, commands);
+    fill_window_moved(
+        reference,
+        &path,
+        0.0,
+        has_curves(commands),
+        clipping,
+        canvas,
+    )
 }
 
-/// [`fill_window`] of the path moved by `shift` px sideways (the reference stays).
+/// [`fill_window`] of the path of bounds `path` moved by `shift` px sideways (the reference
+/// stays), `curves` whether it has any.
 pub(super) fn fill_window_moved(
     reference: &Reference,
-    start: Point,
-    commands: &[PathCommand],
+    path: &PathBounds,
     shift: f64,
+    curves: bool,
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Option<(Window, &'static [bool])> {
-    let mut win = Window::round_moved(reference, start, commands, shift);
+    let mut win = Window::around(reference, path, shift);
     // The window ends at the pixmap's border: tiny-skia clips the path there as it does in
     // the document (a curve crossing the border is cut at the crossing, which moves its
     // chords), and pixels outside are never drawn.
     if let Some(c) = canvas {
         win = win.within(Window::inside(c))?;
     }
-    let modes = if has_curves(commands) {
-        clipping.modes()
-    } else {
-        &[false]
-    };
+    let modes = if curves { clipping.modes() } else { &[false] };
     Some((win, modes))
 }
 
@@ -201,6 +206,46 @@ pub(super) fn fill_window_moved(
 /// clipper does to curves.
 pub(crate) fn has_curves(commands: &[PathCommand]) -> bool {
     commands.iter().any(|c| !matches!(c, PathCommand::Line(_)))
+}
+
+/// The least and largest coordinates of the points of a path `M start commands Z`, control
+/// points included (an arc, which the builder does not make, by its whole ellipse); not a
+/// number where no point has one.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PathBounds {
+    lo: Point,
+    hi: Point,
+}
+
+impl PathBounds {
+    /// The bounds of `M start commands Z`.
+    pub(super) fn of(start: Point, commands: &[PathCommand]) -> PathBounds {
+        let (mut lo, mut hi) = (start, start);
+        let mut grow = |p: Point| {
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        };
+        for c in commands {
+            match *c {
+                PathCommand::Line(p) => grow(p),
+                PathCommand::Quad(a, p) => {
+                    grow(a);
+                    grow(p);
+                }
+                PathCommand::Cubic(a, b, p) => {
+                    grow(a);
+                    grow(b);
+                    grow(p);
+                }
+                PathCommand::Arc(a) => {
+                    let r = a.radii.x.abs().max(a.radii.y.abs());
+                    grow(a.to - kurbo::Vec2::new(r, r) * 2.0);
+                    grow(a.to + kurbo::Vec2::new(r, r) * 2.0);
+                }
+            }
+        }
+        PathBounds { lo, hi }
+    }
 }
 
 /// A rectangle of whole pixels: columns `x0..x1`, rows `y0..y1`.
@@ -217,43 +262,22 @@ impl Window {
     /// on every side (the scan converter keeps clipping off only when the conservatively
     /// rounded bounds are inside the mask).
     pub(super) fn round(reference: &Reference, start: Point, commands: &[PathCommand]) -> Window {
-        Window::round_moved(reference, start, commands, 0.0)
+        Window::around(reference, &PathBounds::of(start, commands), 0.0)
     }
 
-    /// [`Window::round`] of the path moved by `shift` px sideways (the reference stays).
-    fn round_moved(
-        reference: &Reference,
-        start: Point,
-        commands: &[PathCommand],
-        shift: f64,
-    ) -> Window {
-        let (mut lo, mut hi) = (reference.lo, reference.hi);
-        let mut grow = |p: Point| {
-            let p = Point::new(p.x + shift, p.y);
-            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-        };
-        grow(start);
-        for c in commands {
-            match *c {
-                PathCommand::Line(p) => grow(p),
-                PathCommand::Quad(a, p) => {
-                    grow(a);
-                    grow(p);
-                }
-                PathCommand::Cubic(a, b, p) => {
-                    grow(a);
-                    grow(b);
-                    grow(p);
-                }
-                PathCommand::Arc(a) => {
-                    // Not produced by the builder; bound the whole ellipse.
-                    let r = a.radii.x.abs().max(a.radii.y.abs());
-                    grow(a.to - kurbo::Vec2::new(r, r) * 2.0);
-                    grow(a.to + kurbo::Vec2::new(r, r) * 2.0);
-                }
-            }
-        }
+    /// [`Window::round`] of the path of bounds `path` moved by `shift` px sideways (the
+    /// reference stays).
+    pub(super) fn around(reference: &Reference, path: &PathBounds, shift: f64) -> Window {
+        // (Adding `shift` to the least and the largest x is adding it to every x: rounding
+        // is monotonic.)
+        let mut lo = Point::new(
+            reference.lo.x.min(path.lo.x + shift),
+            reference.lo.y.min(path.lo.y),
+        );
+        let mut hi = Point::new(
+            reference.hi.x.max(path.hi.x + shift),
+            reference.hi.y.max(path.hi.y),
+        );
         if !(lo.x.is_finite() && lo.y.is_finite() && hi.x.is_finite() && hi.y.is_finite()) {
             lo = reference.lo;
             hi = reference.hi;

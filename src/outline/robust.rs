@@ -6,7 +6,7 @@
 
 use super::render_check::{
     draws_right, fill_window_moved, has_curves, misplaced_pixels, pixels_at, EdgeClipping,
-    Reference,
+    PathBounds, Reference,
 };
 use super::scan;
 use crate::curve::PathCommand;
@@ -95,7 +95,8 @@ fn moved_fills(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Option<[Vec<Pixel>; 3]> {
-    let window = |d: f64| fill_window_moved(reference, start, commands, d, clipping, canvas);
+    let (path, curves) = (PathBounds::of(start, commands), has_curves(commands));
+    let window = |d: f64| fill_window_moved(reference, &path, d, curves, clipping, canvas);
     let (win, modes) = window(0.0)?;
     if modes.len() != 1 || window(shift)? != (win, modes) || window(-shift)? != (win, modes) {
         return None;
@@ -115,7 +116,8 @@ fn moved_draw_right(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Option<bool> {
-    let window = |d: f64| fill_window_moved(reference, start, commands, d, clipping, canvas);
+    let (path, curves) = (PathBounds::of(start, commands), has_curves(commands));
+    let window = |d: f64| fill_window_moved(reference, &path, d, curves, clipping, canvas);
     let Some((win, modes)) = window(0.0) else {
         // Nothing of the path as it is is drawn; the moved paths are filled one by one.
         return None;
