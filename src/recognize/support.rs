@@ -127,6 +127,60 @@ fn fixed_extremes<const D: usize>(
     })
 }
 
+/// Index and value of the smallest `y·F(p)` over a set (with [`float_extremes`]' sums), the
+/// first of equal ones: all an upper set gives a support point.
+#[inline]
+fn float_min(set: &LiftedSet, y: &[f64]) -> Option<(usize, f64)> {
+    match if set.dim() == y.len() { y.len() } else { 0 } {
+        2 => fixed_extreme::<2, false>(set, y),
+        3 => fixed_extreme::<3, false>(set, y),
+        5 => fixed_extreme::<5, false>(set, y),
+        9 => fixed_extreme::<9, false>(set, y),
+        _ => float_extremes(set, y).map(|(min, _)| min),
+    }
+}
+
+/// Index and value of the largest `y·F(p)` over a set, the first of equal ones: all a lower
+/// set gives a support point.
+#[inline]
+fn float_max(set: &LiftedSet, y: &[f64]) -> Option<(usize, f64)> {
+    match if set.dim() == y.len() { y.len() } else { 0 } {
+        2 => fixed_extreme::<2, true>(set, y),
+        3 => fixed_extreme::<3, true>(set, y),
+        5 => fixed_extreme::<5, true>(set, y),
+        9 => fixed_extreme::<9, true>(set, y),
+        _ => float_extremes(set, y).map(|(_, max)| max),
+    }
+}
+
+/// [`fixed_extremes`]' smallest (`MAX` false) or largest value alone.
+#[inline]
+fn fixed_extreme<const D: usize, const MAX: bool>(
+    set: &LiftedSet,
+    y: &[f64],
+) -> Option<(usize, f64)> {
+    let y: &[f64; D] = y.try_into().ok()?;
+    let (rows, _) = set.float_values().as_chunks::<D>();
+    let mut best = (
+        usize::MAX,
+        if MAX {
+            f64::NEG_INFINITY
+        } else {
+            f64::INFINITY
+        },
+    );
+    for (i, row) in rows.iter().enumerate() {
+        let mut v = -0.0;
+        for k in 0..D {
+            v += row[k] * y[k];
+        }
+        if (MAX && v > best.1) || (!MAX && v < best.1) {
+            best = (i, v);
+        }
+    }
+    (best.0 != usize::MAX).then_some(best)
+}
+
 /// Index and value of the smallest and of the largest `value(row)` over `rows` (the first
 /// of equal ones); `None` without rows.
 #[inline(always)]
@@ -148,16 +202,17 @@ fn extremes_by<R>(
     (min.0 != usize::MAX).then_some((min, max))
 }
 
-/// Chooses the smaller of the two candidate support points.
+/// Chooses the smaller of the two candidate support points, from the inliers' extremes, the
+/// upper set's least value and the lower set's largest.
 fn pick<V: PartialOrd + Clone>(
     inl: Option<((usize, V), (usize, V))>,
-    upper: Option<((usize, V), (usize, V))>,
-    lower: Option<((usize, V), (usize, V))>,
+    upper_min: Option<(usize, V)>,
+    lower_max: Option<(usize, V)>,
     sub: impl Fn(&V, &V) -> V,
 ) -> Option<Tag> {
     let ((imin, vmin), (imax, vmax)) = inl?;
-    let a = upper.map(|((j, umin), _)| (sub(&umin, &vmax), imax, j, Side::Upper));
-    let b = lower.map(|(_, (j, lmax))| (sub(&vmin, &lmax), imin, j, Side::Lower));
+    let a = upper_min.map(|(j, umin)| (sub(&umin, &vmax), imax, j, Side::Upper));
+    let b = lower_max.map(|(j, lmax)| (sub(&vmin, &lmax), imin, j, Side::Lower));
     let best = match (a, b) {
         (Some(a), Some(b)) => {
             if b.0 < a.0 {
@@ -205,8 +260,8 @@ impl SupportMap<f64> for FloatSupport<'_> {
     fn support_point(&mut self, x: &[f64], mut buf: Vec<f64>) -> Option<Vertex<f64>> {
         self.map.pull_back_into(x, &mut self.y);
         let inl = float_extremes(self.sets.inliers, &self.y);
-        let up = float_extremes(self.sets.upper, &self.y);
-        let lo = float_extremes(self.sets.lower, &self.y);
+        let up = float_min(self.sets.upper, &self.y);
+        let lo = float_max(self.sets.lower, &self.y);
         let tag = pick(inl, up, lo, |a, b| a - b)?;
         self.point_into(&tag, &mut buf);
         Some(Vertex { point: buf, tag })
@@ -352,13 +407,14 @@ impl SupportMap<BigRational> for ExactSupport<'_> {
             let up = i128_extremes(self.sets.upper, &a);
             let lo = i128_extremes(self.sets.lower, &a);
             if let (Some(inl), Some(up), Some(lo)) = (inl, up, lo) {
+                let (up, lo) = (up.map(|(min, _)| min), lo.map(|(_, max)| max));
                 let tag = pick(inl, up, lo, |a, b| a - b)?;
                 return Some(self.vertex(&tag));
             }
         }
         let inl = big_extremes(self.sets.inliers, &xi);
-        let up = big_extremes(self.sets.upper, &xi);
-        let lo = big_extremes(self.sets.lower, &xi);
+        let up = big_extremes(self.sets.upper, &xi).map(|(min, _)| min);
+        let lo = big_extremes(self.sets.lower, &xi).map(|(_, max)| max);
         let tag = pick(inl, up, lo, |a, b| a - b)?;
         Some(self.vertex(&tag))
     }
