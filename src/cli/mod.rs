@@ -116,6 +116,7 @@ fn install_signal_handlers() {
         };
         let _ = std::thread::Builder::new()
             .name("signals".into())
+            .stack_size(64 * 1024)
             .spawn(move || {
                 if let Some(sig) = signals.forever().next() {
                     layertrace::exit_removing_temporaries(128 + sig);
