@@ -6,7 +6,7 @@
 
 use super::render_check::{
     draws_right, fill_window_moved, has_curves, misplaced_pixels, pixels_at, EdgeClipping,
-    PathBounds, Reference,
+    PathBounds, Reference, Window,
 };
 use super::scan;
 use crate::curve::PathCommand;
@@ -95,10 +95,8 @@ fn moved_fills(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Option<[Vec<Pixel>; 3]> {
-    let (path, curves) = (PathBounds::of(start, commands), has_curves(commands));
-    let window = |d: f64| fill_window_moved(reference, &path, d, curves, clipping, canvas);
-    let (win, modes) = window(0.0)?;
-    if modes.len() != 1 || window(shift)? != (win, modes) || window(-shift)? != (win, modes) {
+    let (win, modes) = moved_window(reference, start, commands, shift, clipping, canvas)?;
+    if modes.len() != 1 {
         return None;
     }
     let fills = scan::painted_moved(reference, start, commands, &win, modes[0], shift, true)?;
@@ -116,15 +114,7 @@ fn moved_draw_right(
     clipping: EdgeClipping,
     canvas: Option<Rect>,
 ) -> Option<bool> {
-    let (path, curves) = (PathBounds::of(start, commands), has_curves(commands));
-    let window = |d: f64| fill_window_moved(reference, &path, d, curves, clipping, canvas);
-    let Some((win, modes)) = window(0.0) else {
-        // Nothing of the path as it is is drawn; the moved paths are filled one by one.
-        return None;
-    };
-    if window(shift)? != (win, modes) || window(-shift)? != (win, modes) {
-        return None;
-    }
+    let (win, modes) = moved_window(reference, start, commands, shift, clipping, canvas)?;
     for &clipped in modes {
         let fills = scan::painted_moved(reference, start, commands, &win, clipped, shift, true)?;
         if fills.iter().any(|at| !at.is_empty()) {
@@ -132,6 +122,23 @@ fn moved_draw_right(
         }
     }
     Some(true)
+}
+
+/// The window and the ways of drawing curves that the path as it is and moved by `±shift`
+/// share ([`fill_window_moved`]); `None` when they differ or nothing of the path as it is
+/// is drawn (the caller fills the three one by one).
+fn moved_window(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    shift: f64,
+    clipping: EdgeClipping,
+    canvas: Option<Rect>,
+) -> Option<(Window, &'static [bool])> {
+    let (path, curves) = (PathBounds::of(start, commands), has_curves(commands));
+    let window = |d: f64| fill_window_moved(reference, &path, d, curves, clipping, canvas);
+    let shared = window(0.0)?;
+    (window(shift)? == shared && window(-shift)? == shared).then_some(shared)
 }
 
 /// [`misplaced_pixels`] of the path moved by `shift` px sideways, then by `-shift`: the

@@ -186,6 +186,29 @@ impl Crossings {
         }
     }
 
+    /// A quadratic or cubic (`draw`) with its points in each of the `fills` fills
+    /// (`each(k)`): once for all when it is not cut where it turns (its edges move with it),
+    /// else once per fill, its crossings in that fill alone.
+    #[inline]
+    fn curve_in_fills<const P: usize, const M: usize>(
+        &mut self,
+        each: impl Fn(usize) -> [SkPoint; P],
+        fills: usize,
+        chop_y: fn(&[SkPoint; P], &mut [SkPoint; M]) -> usize,
+        chop_x: fn(&[SkPoint; P], &mut [SkPoint; M]) -> usize,
+        draw: fn(&mut Self, [SkPoint; P]),
+    ) {
+        if fills > 1 && self.is_cut(&each(0), chop_y, chop_x) {
+            for k in 0..fills {
+                self.tag = Tag(1 << k);
+                draw(self, each(k));
+            }
+            self.tag = Tag::SHARED;
+        } else {
+            draw(self, each(0));
+        }
+    }
+
     /// Whether a curve of `P` points is cut where it turns in y (or, when the clipper runs,
     /// in x): an uncut curve's edges move with it (see [`painted_moved`]).
     fn is_cut<const P: usize, const M: usize>(
@@ -525,34 +548,24 @@ fn painted_with<const FILLS: usize>(
             }
             PathCommand::Quad(a, p) => {
                 let (a, q) = (moved(a)?, moved(p)?);
-                let each = |k: usize| [pen[k], a[k], q[k]];
-                if fills > 1
-                    && edges.is_cut(&each(0), chop_quad_at_y_extrema, chop_quad_at_x_extrema)
-                {
-                    for k in 0..fills {
-                        edges.tag = Tag(1 << k);
-                        edges.quad(each(k));
-                    }
-                    edges.tag = Tag::SHARED;
-                } else {
-                    edges.quad(each(0));
-                }
+                edges.curve_in_fills(
+                    |k| [pen[k], a[k], q[k]],
+                    fills,
+                    chop_quad_at_y_extrema,
+                    chop_quad_at_x_extrema,
+                    Crossings::quad,
+                );
                 q
             }
             PathCommand::Cubic(a, b, p) => {
                 let (a, b, q) = (moved(a)?, moved(b)?, moved(p)?);
-                let each = |k: usize| [pen[k], a[k], b[k], q[k]];
-                if fills > 1
-                    && edges.is_cut(&each(0), chop_cubic_at_y_extrema, chop_cubic_at_x_extrema)
-                {
-                    for k in 0..fills {
-                        edges.tag = Tag(1 << k);
-                        edges.cubic(each(k));
-                    }
-                    edges.tag = Tag::SHARED;
-                } else {
-                    edges.cubic(each(0));
-                }
+                edges.curve_in_fills(
+                    |k| [pen[k], a[k], b[k], q[k]],
+                    fills,
+                    chop_cubic_at_y_extrema,
+                    chop_cubic_at_x_extrema,
+                    Crossings::cubic,
+                );
                 q
             }
             PathCommand::Arc(_) => return None,

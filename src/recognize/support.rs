@@ -127,29 +127,17 @@ fn fixed_extremes<const D: usize>(
     })
 }
 
-/// Index and value of the smallest `y·F(p)` over a set (with [`float_extremes`]' sums), the
-/// first of equal ones: all an upper set gives a support point.
+/// Index and value of the smallest (`MAX` false) or of the largest `y·F(p)` over a set
+/// (with [`float_extremes`]' sums), the first of equal ones: all an upper set (its smallest)
+/// or a lower set (its largest) gives a support point.
 #[inline]
-fn float_min(set: &LiftedSet, y: &[f64]) -> Option<(usize, f64)> {
+fn float_extreme<const MAX: bool>(set: &LiftedSet, y: &[f64]) -> Option<(usize, f64)> {
     match if set.dim() == y.len() { y.len() } else { 0 } {
-        2 => fixed_extreme::<2, false>(set, y),
-        3 => fixed_extreme::<3, false>(set, y),
-        5 => fixed_extreme::<5, false>(set, y),
-        9 => fixed_extreme::<9, false>(set, y),
-        _ => float_extremes(set, y).map(|(min, _)| min),
-    }
-}
-
-/// Index and value of the largest `y·F(p)` over a set, the first of equal ones: all a lower
-/// set gives a support point.
-#[inline]
-fn float_max(set: &LiftedSet, y: &[f64]) -> Option<(usize, f64)> {
-    match if set.dim() == y.len() { y.len() } else { 0 } {
-        2 => fixed_extreme::<2, true>(set, y),
-        3 => fixed_extreme::<3, true>(set, y),
-        5 => fixed_extreme::<5, true>(set, y),
-        9 => fixed_extreme::<9, true>(set, y),
-        _ => float_extremes(set, y).map(|(_, max)| max),
+        2 => fixed_extreme::<2, MAX>(set, y),
+        3 => fixed_extreme::<3, MAX>(set, y),
+        5 => fixed_extreme::<5, MAX>(set, y),
+        9 => fixed_extreme::<9, MAX>(set, y),
+        _ => float_extremes(set, y).map(|(min, max)| if MAX { max } else { min }),
     }
 }
 
@@ -260,8 +248,8 @@ impl SupportMap<f64> for FloatSupport<'_> {
     fn support_point(&mut self, x: &[f64], mut buf: Vec<f64>) -> Option<Vertex<f64>> {
         self.map.pull_back_into(x, &mut self.y);
         let inl = float_extremes(self.sets.inliers, &self.y);
-        let up = float_min(self.sets.upper, &self.y);
-        let lo = float_max(self.sets.lower, &self.y);
+        let up = float_extreme::<false>(self.sets.upper, &self.y);
+        let lo = float_extreme::<true>(self.sets.lower, &self.y);
         let tag = pick(inl, up, lo, |a, b| a - b)?;
         self.point_into(&tag, &mut buf);
         Some(Vertex { point: buf, tag })
