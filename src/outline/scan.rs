@@ -729,6 +729,30 @@ mod tests {
         }
     }
 
+    /// A random path from [`command`]s (its start a line's end) and a random crack-like
+    /// reference through whole points moved by `off`.
+    fn random_path(
+        path: &[(u8, [u16; 6])],
+        start: [u16; 2],
+        refp: &[(i32, i32)],
+        grid: f64,
+        off: f64,
+        scale: f64,
+    ) -> (Point, Vec<PathCommand>, Reference) {
+        let commands = path
+            .iter()
+            .map(|&(k, v)| command(k, v, grid, off, scale))
+            .collect();
+        let PathCommand::Line(start) =
+            command(0, [start[0], start[1], 0, 0, 0, 0], grid, off, scale)
+        else {
+            unreachable!()
+        };
+        let r = |&(x, y): &(i32, i32)| Point::new(f64::from(x) + off, f64::from(y) + off);
+        let rc: Vec<PathCommand> = refp[1..].iter().map(|p| PathCommand::Line(r(p))).collect();
+        (start, commands, Reference::new(r(&refp[0]), &rc))
+    }
+
     proptest! {
         /// A row comes out in order of its first field, the same crossings, short (by
         /// insertion) or long.
@@ -759,15 +783,7 @@ mod tests {
             clipped in any::<bool>(),
             scale in prop::sample::select(vec![1.0, 1.0, 30.0, 300.0]),
         ) {
-            let commands: Vec<PathCommand> =
-                path.iter().map(|&(k, v)| command(k, v, grid, off, scale)).collect();
-            let PathCommand::Line(start) = command(0, [start[0], start[1], 0, 0, 0, 0], grid, off, scale)
-            else {
-                unreachable!()
-            };
-            let r = |&(x, y): &(i32, i32)| Point::new(f64::from(x) + off, f64::from(y) + off);
-            let rc: Vec<PathCommand> = refp[1..].iter().map(|p| PathCommand::Line(r(p))).collect();
-            let reference = Reference::new(r(&refp[0]), &rc);
+            let (start, commands, reference) = random_path(&path, start, &refp, grid, off, scale);
             let win = Window::round(&reference, start, &commands);
             let ours = painted(&reference, start, &commands, &win, clipped).expect("inside");
             let w = (win.x1 - win.x0) as usize;
@@ -794,15 +810,7 @@ mod tests {
             scale in prop::sample::select(vec![1.0, 1.0, 30.0, 300.0]),
             k in 1u8..3,
         ) {
-            let commands: Vec<PathCommand> =
-                path.iter().map(|&(kind, v)| command(kind, v, 64.0, off, scale)).collect();
-            let PathCommand::Line(start) = command(0, [start[0], start[1], 0, 0, 0, 0], 64.0, off, scale)
-            else {
-                unreachable!()
-            };
-            let r = |&(x, y): &(i32, i32)| Point::new(f64::from(x) + off, f64::from(y) + off);
-            let rc: Vec<PathCommand> = refp[1..].iter().map(|p| PathCommand::Line(r(p))).collect();
-            let reference = Reference::new(r(&refp[0]), &rc);
+            let (start, commands, reference) = random_path(&path, start, &refp, 64.0, off, scale);
             let win = Window::round(&reference, start, &commands);
             let shift = f64::from(k) / 64.0;
             let expected: Vec<Vec<usize>> = [0.0, shift, -shift]
