@@ -252,8 +252,8 @@ pub fn contour_path(
     basis: &dyn Basis,
     opts: &OutlineOptions,
 ) -> ContourPath {
-    let mut references = None;
-    let mut path = exact_path(contour, pieces, basis, opts, &mut references);
+    let (mut references, mut polyline) = (None, None);
+    let mut path = exact_path(contour, pieces, basis, opts, &mut references, &mut polyline);
     // Where one-pixel features leave a staircase, its corners are cut (no pixel changes).
     if !opts.square_corners {
         if let Some((start, commands)) =
@@ -284,8 +284,9 @@ pub fn contour_path(
             && path.commands.len() >= 3
             && basis.dim() > crate::model::Model::Line.basis().dim()
         {
-            let polyline = crack_polyline(&contour.points, 0, n - 1);
-            let cracks = Cracks::new(&polyline);
+            let polyline =
+                polyline.get_or_insert_with(|| crack_polyline(&contour.points, 0, n - 1));
+            let cracks = Cracks::new(polyline);
             if let Some(absorbed) = absorb_runs(
                 path.start,
                 &path.commands,
@@ -297,7 +298,7 @@ pub fn contour_path(
                 // Each run's loop paints nothing, but the whole path is checked as a contour
                 // is: tiny-skia cuts curves at their extrema in `f32`, whose rounding depends
                 // on the origin (one pixel of 24 random ellipses in a test).
-                let refs = references.get_or_insert_with(|| References::new(&polyline));
+                let refs = references.get_or_insert_with(|| References::new(polyline));
                 if misplaced_anywhere(refs.fill(), &refs.cracks, absorbed.0, &absorbed.1, opts)
                     .is_empty()
                 {
@@ -367,7 +368,8 @@ fn misplaced_anywhere(
 
 /// [`contour_path`] before the corners of its staircases are cut.
 ///
-/// `references` (the caller's, `None` at first) holds the contour's [`References`] once a
+/// `polyline` (the caller's, `None` at first) holds the contour's [`crack_polyline`] once
+/// made, and `references` (the caller's, `None` at first) the contour's [`References`] once a
 /// drawing has been checked against them.
 fn exact_path(
     contour: &Contour,
@@ -375,6 +377,7 @@ fn exact_path(
     basis: &dyn Basis,
     opts: &OutlineOptions,
     references: &mut Option<References>,
+    polyline: &mut Option<Vec<kurbo::Point>>,
 ) -> ContourPath {
     let points = &contour.points;
     let n = points.len();
@@ -454,8 +457,9 @@ fn exact_path(
             if stretches.iter().all(|s| s.drawing == Drawing::Cracks) && built.failed.is_empty() {
                 return finish(path, &stretches, fallbacks);
             }
-            let refs = references
-                .get_or_insert_with(|| References::new(&crack_polyline(points, 0, n - 1)));
+            let refs = references.get_or_insert_with(|| {
+                References::new(polyline.get_or_insert_with(|| crack_polyline(points, 0, n - 1)))
+            });
             let (reference, cracks) = (refs.fill(), &refs.cracks);
             let wrong = misplaced_anywhere(reference, cracks, path.start, &path.commands, opts);
             if wrong.is_empty() {

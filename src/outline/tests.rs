@@ -151,6 +151,7 @@ fn bad_pieces_fall_back_to_cracks() {
         &basis,
         &OutlineOptions::default(),
         &mut None,
+        &mut None,
     );
     assert_eq!(cp.fallbacks.invalid_pieces, 1);
     assert!(exact_by_construction(&cp));
