@@ -143,7 +143,7 @@ fn moved_window(
 
 /// [`misplaced_pixels`] of the path moved by `shift` px sideways, then by `-shift`: the
 /// pixels the first move that misplaces any gets wrong (empty when neither does).
-pub(crate) fn misplaced_when_moved(
+fn misplaced_when_moved(
     reference: &Reference,
     start: Point,
     commands: &[PathCommand],

@@ -456,8 +456,8 @@ struct Scratch {
     next: Vec<usize>,
     /// `(x, winding, tag)` of the crossings, row by row.
     by_row: Vec<(i32, i8, Tag)>,
-    /// One row's `(round(x), winding, _)` in one fill.
-    line: Vec<(i32, i8, ())>,
+    /// One row's `(round(x), winding)` in one fill.
+    line: Vec<(i32, i8)>,
 }
 
 thread_local! {
@@ -505,7 +505,6 @@ fn painted_with<const FILLS: usize>(
     let (wf, hf) = (w as f64, h as f64);
     let (dx, dy) = (win.x0 as f64, win.y0 as f64);
     // The fills: the path as it is, then moved by ±shift (k/64 px, k · 2^10 in 16.16).
-    let fills = FILLS;
     let k64 = {
         let k = shift * 64.0;
         (k.fract() == 0.0 && k.abs() <= 64.0).then_some(k as i32)?
@@ -521,7 +520,7 @@ fn painted_with<const FILLS: usize>(
     let moved = |p: Point| -> Option<Moved> {
         let plain = at(p)?;
         let mut out = [plain; 3];
-        for k in 1..fills {
+        for k in 1..FILLS {
             let (x, y) = ((p.x + d[k]) - dx, p.y - dy);
             if !inside(x, y) || f64::from(x as f32) != f64::from(plain.x) + d[k] {
                 return None;
@@ -550,7 +549,7 @@ fn painted_with<const FILLS: usize>(
                 let (a, q) = (moved(a)?, moved(p)?);
                 edges.curve_in_fills(
                     |k| [pen[k], a[k], q[k]],
-                    fills,
+                    FILLS,
                     chop_quad_at_y_extrema,
                     chop_quad_at_x_extrema,
                     Crossings::quad,
@@ -561,7 +560,7 @@ fn painted_with<const FILLS: usize>(
                 let (a, b, q) = (moved(a)?, moved(b)?, moved(p)?);
                 edges.curve_in_fills(
                     |k| [pen[k], a[k], b[k], q[k]],
-                    fills,
+                    FILLS,
                     chop_cubic_at_y_extrema,
                     chop_cubic_at_x_extrema,
                     Crossings::cubic,
@@ -612,7 +611,7 @@ fn painted_with<const FILLS: usize>(
     let round = |x: i32| x.wrapping_add(0x8000) >> 16;
     for c in crossings {
         let k = &mut next[c.row as usize];
-        by_row[*k] = (if fills == 1 { round(c.x) } else { c.x }, c.winding, c.tag);
+        by_row[*k] = (if FILLS == 1 { round(c.x) } else { c.x }, c.winding, c.tag);
         *k += 1;
     }
     // Runs of each row in order: the indices come out sorted.
@@ -621,7 +620,7 @@ fn painted_with<const FILLS: usize>(
         for (row, span) in starts.windows(2).enumerate() {
             let crossings = &mut by_row[span[0]..span[1]];
             if !crossings.is_empty() {
-                sort_row(crossings);
+                sort_row(crossings, |&(at, _, _)| at);
                 let runs = crossings.iter().map(|&(at, winding, _)| (at, winding));
                 paint_runs(runs, row * w as usize, w as i32, &mut painted[0]);
             }
@@ -646,12 +645,16 @@ fn painted_with<const FILLS: usize>(
                     } else {
                         x
                     };
-                    line.push((round(x), winding, ()));
+                    line.push((round(x), winding));
                 }
             }
-            sort_row(line);
-            let runs = line.iter().map(|&(at, winding, _)| (at, winding));
-            paint_runs(runs, row * w as usize, w as i32, &mut painted[fill]);
+            sort_row(line, |&(at, _)| at);
+            paint_runs(
+                line.iter().copied(),
+                row * w as usize,
+                w as i32,
+                &mut painted[fill],
+            );
         }
         if first_only && !painted[fill].is_empty() {
             break;
@@ -689,19 +692,19 @@ fn paint_runs(
     }
 }
 
-/// Sorts one row's crossings by their first field, `round(x)` (the order of equal ones does
-/// not change the runs): by insertion when there are few (most rows of a fill have two to
-/// six: the call of `sort_unstable` cost more than the sorting, 1% of the 3000² sample's
+/// Sorts one row's crossings by their pixel boundary `at` (the order of equal ones does not
+/// change the runs): by insertion when there are few (most rows of a fill have two to six:
+/// the call of `sort_unstable` cost more than the sorting, 1% of the 3000² sample's
 /// instructions), else by `sort_unstable_by_key`.
-fn sort_row<T: Copy, U: Copy>(line: &mut [(i32, T, U)]) {
+fn sort_row<E: Copy>(line: &mut [E], at: impl Fn(&E) -> i32) {
     if line.len() > 12 {
-        line.sort_unstable_by_key(|c| c.0);
+        line.sort_unstable_by_key(at);
         return;
     }
     for i in 1..line.len() {
         let c = line[i];
         let mut j = i;
-        while j > 0 && line[j - 1].0 > c.0 {
+        while j > 0 && at(&line[j - 1]) > at(&c) {
             line[j] = line[j - 1];
             j -= 1;
         }
@@ -761,7 +764,7 @@ mod tests {
             line in prop::collection::vec((-5i32..5, prop::sample::select(vec![-1i8, 1]), 0u8..3), 0..30),
         ) {
             let mut sorted = line.clone();
-            sort_row(&mut sorted);
+            sort_row(&mut sorted, |&(at, _, _)| at);
             prop_assert!(sorted.windows(2).all(|w| w[0].0 <= w[1].0));
             let (mut a, mut b) = (line, sorted.clone());
             a.sort_unstable();
