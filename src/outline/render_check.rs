@@ -311,6 +311,16 @@ impl Window {
         (w.x0 < w.x1 && w.y0 < w.y1).then_some(w)
     }
 
+    /// The least window holding both.
+    pub(super) fn union(self, other: Window) -> Window {
+        Window {
+            x0: self.x0.min(other.x0),
+            y0: self.y0.min(other.y0),
+            x1: self.x1.max(other.x1),
+            y1: self.y1.max(other.y1),
+        }
+    }
+
     /// Whether every pixel of `self` is in `other`.
     pub(super) fn is_in(self, other: Window) -> bool {
         self.x0 >= other.x0 && self.y0 >= other.y0 && self.x1 <= other.x1 && self.y1 <= other.y1

@@ -125,8 +125,15 @@ fn moved_draw_right(
 }
 
 /// The window and the ways of drawing curves that the path as it is and moved by `±shift`
-/// share ([`fill_window_moved`]); `None` when they differ or nothing of the path as it is
-/// is drawn (the caller fills the three one by one).
+/// share ([`fill_window_moved`]); `None` when nothing of the path as it is is drawn, or the
+/// windows differ and the path is not [`on_grid`] lines (the caller fills the three one by
+/// one).
+///
+/// Lines whose points, and the reference's, lie on the 1/64 px grid are filled the same in
+/// any window that holds them with room to spare: moving the window's origin by whole
+/// pixels moves every point exactly in `f32` and in tiny-skia's fixed point, and so every
+/// row crossing by whole pixels. Then the three share the least window holding theirs
+/// (a path along pixel edges, such as a speck's, has windows one pixel apart when moved).
 fn moved_window(
     reference: &Reference,
     start: Point,
@@ -137,8 +144,28 @@ fn moved_window(
 ) -> Option<(Window, &'static [bool])> {
     let (path, curves) = (PathBounds::of(start, commands), has_curves(commands));
     let window = |d: f64| fill_window_moved(reference, &path, d, curves, clipping, canvas);
-    let shared = window(0.0)?;
-    (window(shift)? == shared && window(-shift)? == shared).then_some(shared)
+    let (shared, modes) = window(0.0)?;
+    let (right, _) = window(shift)?;
+    let (left, _) = window(-shift)?;
+    if right == shared && left == shared {
+        return Some((shared, modes));
+    }
+    (!curves && on_grid(reference, start, commands))
+        .then(|| (shared.union(right).union(left), modes))
+}
+
+/// Whether every point of `M start commands Z` and of `reference` is a multiple of 1/64 px
+/// below 2^16 px in size (exact in `f32` wherever a window puts the origin).
+fn on_grid(reference: &Reference, start: Point, commands: &[PathCommand]) -> bool {
+    let exact = |p: Point| {
+        [p.x, p.y]
+            .iter()
+            .all(|v| (v * 64.0).fract() == 0.0 && v.abs() < 65536.0)
+    };
+    exact(start)
+        && commands.iter().all(|c| exact(c.end()))
+        && exact(reference.start)
+        && reference.vertices.iter().all(|&p| exact(p))
 }
 
 /// [`misplaced_pixels`] of the path moved by `shift` px sideways, then by `-shift`: the
@@ -186,4 +213,85 @@ pub(crate) fn finely_flattened(start: Point, commands: &[PathCommand]) -> Option
         }
     });
     Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A polygon of lines through `points` (px, plus `off`), its start the first.
+    fn polygon(points: &[(i32, i32)], off: f64) -> (Point, Vec<PathCommand>) {
+        let p = |&(x, y): &(i32, i32)| Point::new(f64::from(x) / 4.0 + off, f64::from(y) / 4.0);
+        let commands = points[1..]
+            .iter()
+            .map(|q| PathCommand::Line(p(q)))
+            .collect();
+        (p(&points[0]), commands)
+    }
+
+    proptest! {
+        /// Lines on the grid whose moved windows differ (along pixel edges, as specks and
+        /// pixel art are drawn) are checked in one scan of the least window holding the
+        /// three, and give what three fills in their own windows give.
+        #[test]
+        fn lines_moved_in_a_shared_window_fill_as_in_their_own(
+            path in prop::collection::vec((0i32..48, 0i32..48), 3..9),
+            refp in prop::collection::vec((0i32..12, 0i32..12), 3..8),
+            off in prop::sample::select(vec![0.0, 3.0, 0.25, 1.0 / 64.0]),
+            k in 1u8..3,
+        ) {
+            let (start, commands) = polygon(&path, off);
+            let (rs, rc) = polygon(&refp.iter().map(|&(x, y)| (4 * x, 4 * y)).collect::<Vec<_>>(), 0.0);
+            let reference = Reference::new(rs, &rc);
+            let shift = f64::from(k) / 64.0;
+            let (one_scan, each) = (
+                misplaced_moved_then_plain(&reference, start, &commands, shift, EdgeClipping::Never, None),
+                {
+                    let moved = misplaced_when_moved(&reference, start, &commands, shift, EdgeClipping::Never, None);
+                    if moved.is_empty() {
+                        misplaced_pixels(&reference, start, &commands, EdgeClipping::Never, None)
+                    } else {
+                        moved
+                    }
+                },
+            );
+            prop_assert_eq!(one_scan, each);
+        }
+    }
+
+    #[test]
+    fn a_speck_moved_shares_one_window() {
+        // A pixel's square: moved left, its window starts a pixel further left.
+        let start = Point::new(3.0, 3.0);
+        let square = [(4.0, 3.0), (4.0, 4.0), (3.0, 4.0), (3.0, 3.0)]
+            .map(|(x, y)| PathCommand::Line(Point::new(x, y)));
+        let nothing = Reference::new(start, &[]);
+        let shift = super::super::ROBUST_SHIFT;
+        let (win, modes) = moved_window(&nothing, start, &square, shift, EdgeClipping::Never, None)
+            .expect("one window");
+        assert_eq!(modes, &[false]);
+        // It holds the three windows.
+        let path = PathBounds::of(start, &square);
+        for d in [0.0, shift, -shift] {
+            let (own, _) =
+                fill_window_moved(&nothing, &path, d, false, EdgeClipping::Never, None).unwrap();
+            assert!(own.is_in(win));
+        }
+        // Not on the grid: each in its own window.
+        let off = square.map(|c| c.translated(kurbo::Vec2::new(0.001, 0.0)));
+        assert!(moved_window(&nothing, start, &off, shift, EdgeClipping::Never, None).is_none());
+        // The square paints its pixel, moved either way too.
+        assert!(!loop_paints_nothing(
+            start,
+            &square,
+            EdgeClipping::Never,
+            None,
+            true
+        ));
+        assert!(
+            moved_draw_right(&nothing, start, &square, shift, EdgeClipping::Never, None)
+                == Some(false)
+        );
+    }
 }
