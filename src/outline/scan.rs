@@ -356,9 +356,12 @@ impl Crossings {
 /// tiny-skia's edge clipper only cuts curves where they turn in x as well as in y.
 ///
 /// Returns `None` when that is not what tiny-skia would do here: a point (control points
-/// included) not finite or less than a pixel inside the window (a conservative test:
-/// tiny-skia clips the path when its bounds, rounded out by about half a pixel, leave the
-/// mask), an arc, or a window over [`MAX_WINDOW`] pixels.
+/// included) not finite, outside the window, or less than a pixel inside it on a path with
+/// curves (a conservative test: tiny-skia clips the path when its bounds, rounded out by
+/// about half a pixel, leave the mask, and its edge clipper cuts curves there), an arc, or
+/// a window over [`MAX_WINDOW`] pixels. Lines inside the window, its sides included (a
+/// contour along the document's edge, in a window cut there), the clipper leaves as they
+/// are.
 pub(super) fn painted(
     reference: &Reference,
     start: Point,
@@ -512,7 +515,13 @@ fn painted_with<const FILLS: usize>(
     let d = [0.0, f64::from(k64) / 64.0, -f64::from(k64) / 64.0];
     let offsets = [0, k64 << 10, -(k64 << 10)];
     // As `difference_path` hands the points to tiny-skia (a moved path is moved first).
-    let inside = |x: f64, y: f64| x >= 1.0 && y >= 1.0 && x <= wf - 1.0 && y <= hf - 1.0;
+    let margin = if commands.iter().all(|c| matches!(c, PathCommand::Line(_))) {
+        0.0
+    } else {
+        1.0
+    };
+    let inside =
+        |x: f64, y: f64| x >= margin && y >= margin && x <= wf - margin && y <= hf - margin;
     let at = |p: Point| -> Option<SkPoint> {
         let (x, y) = (p.x - dx, p.y - dy);
         inside(x, y).then(|| SkPoint::from_xy(x as f32, y as f32))
@@ -791,6 +800,34 @@ mod tests {
             let ours = painted(&reference, start, &commands, &win, clipped).expect("inside");
             let w = (win.x1 - win.x0) as usize;
             let theirs: Vec<usize> = painted_by_tiny_skia(&reference, start, &commands, &win, &[clipped])
+                .into_iter()
+                .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
+                .collect();
+            prop_assert_eq!(ours, theirs);
+        }
+    }
+
+    proptest! {
+        /// Lines in a window that ends where they do (a contour along the document's edge):
+        /// tiny-skia clips them, and paints the same pixels as the scan.
+        #[test]
+        fn lines_on_the_windows_sides_as_in_tiny_skia(
+            path in prop::collection::vec(any::<[u16; 2]>(), 1..8),
+            start in any::<[u16; 2]>(),
+            refp in prop::collection::vec((0i32..10, 0i32..10), 3..8),
+            grid in prop::sample::select(vec![1.0, 4.0, 64.0]),
+            off in prop::sample::select(vec![2.0, 41.0]),
+        ) {
+            let lines: Vec<(u8, [u16; 6])> = path.iter().map(|&[x, y]| (0, [x, y, 0, 0, 0, 0])).collect();
+            let (start, commands, reference) = random_path(&lines, start, &refp, grid, off, 12.0);
+            let round = Window::round(&reference, start, &commands);
+            // The round window less its two spare pixels: its sides touch the path or the
+            // reference.
+            let win = Window { x0: round.x0 + 2, y0: round.y0 + 2, x1: round.x1 - 2, y1: round.y1 - 2 };
+            prop_assume!(win.x0 < win.x1 && win.y0 < win.y1);
+            let ours = painted(&reference, start, &commands, &win, false).expect("inside");
+            let w = (win.x1 - win.x0) as usize;
+            let theirs: Vec<usize> = painted_by_tiny_skia(&reference, start, &commands, &win, &[false])
                 .into_iter()
                 .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
                 .collect();
