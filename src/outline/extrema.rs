@@ -1,6 +1,6 @@
 //! tiny-skia's cuts of quadratics and cubics where they turn in y (and, where its edge
 //! clipper runs, in x), in `f32`, as its edge builder makes them before it sets up each
-//! part's edges ([`super::scan`]): tiny-skia's code (BSD-3-Clause, Copyright 2006 The
+//! part's edges ([`super::edges`]): tiny-skia's code (BSD-3-Clause, Copyright 2006 The
 //! Android Open Source Project, 2020 Yevhenii Reizner), with its geometry helpers called
 //! from `tiny-skia-path`.
 

@@ -45,6 +45,7 @@ mod corners;
 mod cracks;
 mod cubic_fit;
 mod cut;
+mod edges;
 mod extrema;
 mod joins;
 mod merge;
