@@ -129,14 +129,8 @@ fn surely_paints(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) -> boo
                 continue;
             }
             let clear = edges().all(|(a, b)| {
-                let ab = b - a;
-                let len2 = ab.hypot2();
-                let t = if len2 > 0.0 {
-                    ((c - a).dot(ab) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (a + ab * t - c).hypot2() >= margin2
+                kurbo::ParamCurveNearest::nearest(&kurbo::Line::new(a, b), c, 0.0).distance_sq
+                    >= margin2
             });
             if clear {
                 return true;
