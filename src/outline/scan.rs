@@ -426,6 +426,22 @@ mod tests {
         (start, commands, Reference::new(r(&refp[0]), &rc))
     }
 
+    /// The row-major indices in `win` of the pixels tiny-skia itself paints filling the
+    /// path and `reference` reversed, curves drawn `clipped` or not.
+    fn tiny_skia_indices(
+        reference: &Reference,
+        start: Point,
+        commands: &[PathCommand],
+        win: &Window,
+        clipped: bool,
+    ) -> Vec<usize> {
+        let w = (win.x1 - win.x0) as usize;
+        painted_by_tiny_skia(reference, start, commands, win, &[clipped])
+            .into_iter()
+            .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
+            .collect()
+    }
+
     proptest! {
         /// A row comes out in order of its first field, the same crossings, short (by
         /// insertion) or long.
@@ -459,12 +475,7 @@ mod tests {
             let (start, commands, reference) = random_path(&path, start, &refp, grid, off, scale);
             let win = Window::round(&reference, start, &commands);
             let ours = painted(&reference, start, &commands, &win, clipped).expect("inside");
-            let w = (win.x1 - win.x0) as usize;
-            let theirs: Vec<usize> = painted_by_tiny_skia(&reference, start, &commands, &win, &[clipped])
-                .into_iter()
-                .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
-                .collect();
-            prop_assert_eq!(ours, theirs);
+            prop_assert_eq!(ours, tiny_skia_indices(&reference, start, &commands, &win, clipped));
         }
     }
 
@@ -487,12 +498,7 @@ mod tests {
             let win = Window { x0: round.x0 + 2, y0: round.y0 + 2, x1: round.x1 - 2, y1: round.y1 - 2 };
             prop_assume!(win.x0 < win.x1 && win.y0 < win.y1);
             let ours = painted(&reference, start, &commands, &win, false).expect("inside");
-            let w = (win.x1 - win.x0) as usize;
-            let theirs: Vec<usize> = painted_by_tiny_skia(&reference, start, &commands, &win, &[false])
-                .into_iter()
-                .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
-                .collect();
-            prop_assert_eq!(ours, theirs);
+            prop_assert_eq!(ours, tiny_skia_indices(&reference, start, &commands, &win, false));
         }
     }
 
