@@ -13,7 +13,7 @@
 //! fills on random paths.
 
 use super::edges::{Crossing, Crossings, Tag};
-use super::render_check::{Reference, Window};
+use super::render_check::{has_curves, Reference, Window};
 use crate::curve::PathCommand;
 use kurbo::Point;
 use tiny_skia_path::Point as SkPoint;
@@ -188,11 +188,7 @@ fn painted_with<const FILLS: usize>(
     let d = [0.0, f64::from(k64) / 64.0, -f64::from(k64) / 64.0];
     let offsets = [0, k64 << 10, -(k64 << 10)];
     // As `difference_path` hands the points to tiny-skia (a moved path is moved first).
-    let margin = if commands.iter().all(|c| matches!(c, PathCommand::Line(_))) {
-        0.0
-    } else {
-        1.0
-    };
+    let margin = if has_curves(commands) { 1.0 } else { 0.0 };
     let inside =
         |x: f64, y: f64| x >= margin && y >= margin && x <= wf - margin && y <= hf - margin;
     let at = |p: Point| -> Option<SkPoint> {
