@@ -88,6 +88,9 @@ pub(crate) struct Stretcher<'a> {
     /// Sets [`Stretcher::polygon`] clears and refills for each segment (kept for their
     /// capacity: growing them anew cost 4% of the run).
     scratch: [PixelSet; 3],
+    /// The segment's side sets in the order [`Stretcher::polygon`] found them (low, high),
+    /// as [`side_pixels`] gives them up to order: its segments' borders need no second pass.
+    sides: [Vec<Pixel>; 2],
     /// The separation [`Stretcher::polygon`] clears for each segment (kept for its hulls'
     /// capacity).
     separation: Separation,
@@ -103,6 +106,7 @@ impl<'a> Stretcher<'a> {
             next_id: 0,
             tolerance,
             scratch: Default::default(),
+            sides: Default::default(),
             separation: Separation::new(),
             line: Model::Line.basis(),
         }
@@ -187,17 +191,23 @@ impl<'a> Stretcher<'a> {
         let mut out = Vec::new();
         let mut i = first;
         let [mut in_piece, mut high, mut low] = std::mem::take(&mut self.scratch);
+        let [mut low_list, mut high_list] = std::mem::take(&mut self.sides);
         let mut sep = std::mem::replace(&mut self.separation, Separation::new());
         while i <= last {
             sep.clear();
             in_piece.clear();
             high.clear();
             low.clear();
+            low_list.clear();
+            high_list.clear();
             let mut j = i;
             loop {
+                // (What point `j` adds is dropped again if it ends the segment.)
+                let lengths = (low_list.len(), high_list.len());
                 let p = points[j];
                 let mut ok = true;
                 if low.insert(p) {
+                    low_list.push(p);
                     ok &= sep.add_low(xy(p));
                 }
                 in_piece.insert(p);
@@ -208,14 +218,18 @@ impl<'a> Stretcher<'a> {
                             continue;
                         }
                         if right && high.insert(q) {
+                            high_list.push(q);
                             ok &= sep.add_high(xy(q));
                         }
                         if left && !right && low.insert(q) {
+                            low_list.push(q);
                             ok &= sep.add_low(xy(q));
                         }
                     }
                 }
                 if !ok && j > i {
+                    low_list.truncate(lengths.0);
+                    high_list.truncate(lengths.1);
                     j -= 1;
                     break;
                 }
@@ -224,10 +238,14 @@ impl<'a> Stretcher<'a> {
                 }
                 j += 1;
             }
-            out.push(self.segment(i, j));
+            // The sides found are the segment's (see `sides`): a later point of the
+            // segment beside an earlier one on the right would have ended it.
+            let border = self.border_between(&self.line, i, &low_list, &high_list, false);
+            out.push(self.straight_or_cracks(i, j, border));
             i = j + 1;
         }
         self.scratch = [in_piece, high, low];
+        self.sides = [low_list, high_list];
         self.separation = sep;
         out
     }
@@ -236,8 +254,20 @@ impl<'a> Stretcher<'a> {
     /// between its points (with the foreground beside them) and the background beside
     /// them; cracks when there is none.
     fn segment(&mut self, first: usize, last: usize) -> Stretch {
+        let border = self.closed_border(&self.line, first, last, false);
+        self.straight_or_cracks(first, last, border)
+    }
+
+    /// The stretch of the straight segment `first..=last` along `border` (its
+    /// [`Stretcher::closed_border`] in the line basis), or along its cracks without one.
+    fn straight_or_cracks(
+        &mut self,
+        first: usize,
+        last: usize,
+        border: Option<(Polynomial, f64)>,
+    ) -> Stretch {
         let id = self.id();
-        match self.closed_border(&self.line, first, last, false) {
+        match border {
             Some((poly, clearance)) => Stretch {
                 first,
                 last,
@@ -275,8 +305,21 @@ impl<'a> Stretcher<'a> {
         last: usize,
         scaled: bool,
     ) -> Option<(Polynomial, f64)> {
-        let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
         let (low, high) = side_pixels(self.points, first, last);
+        self.border_between(basis, first, &low, &high, scaled)
+    }
+
+    /// [`Stretcher::closed_border`] from the sides of `first..` (its [`side_pixels`], in
+    /// any order).
+    fn border_between(
+        &self,
+        basis: &dyn Basis,
+        first: usize,
+        low: &[Pixel],
+        high: &[Pixel],
+        scaled: bool,
+    ) -> Option<(Polynomial, f64)> {
+        let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
         let (low, high): (Vec<[i64; 2]>, Vec<[i64; 2]>) =
             (low.iter().map(xy).collect(), high.iter().map(xy).collect());
         let origin = xy(&self.points[first]);
