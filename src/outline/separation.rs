@@ -7,16 +7,25 @@
 //! the arc with the half-circles of its new pairs — only those with the vertices of the
 //! other set's convex hull, and none for a point inside its own set's hull; all arithmetic
 //! is on integer vectors (differences of points, turned by ±90°), so the answer is exact.
+//!
+//! Points are kept relative to the first one added, within [`MAX_OFFSET`] of it: every
+//! vector is then a difference of two such points (at most `2^29` per coordinate), and
+//! every product of two, and a sum of two products, stays below `2^59`, exact in `i64`.
 
 /// An integer direction.
 type Dir = [i64; 2];
 
-fn cross(a: Dir, b: Dir) -> i128 {
-    i128::from(a[0]) * i128::from(b[1]) - i128::from(a[1]) * i128::from(b[0])
+/// Largest coordinate of a point relative to the first point of a [`Separation`]: a point
+/// farther away makes the sets count as not separable (the conservative answer: the
+/// callers' segments end before it; theirs span at most a few hundred pixels, in 64ths).
+const MAX_OFFSET: i64 = 1 << 28;
+
+fn cross(a: Dir, b: Dir) -> i64 {
+    a[0] * b[1] - a[1] * b[0]
 }
 
-fn dot(a: Dir, b: Dir) -> i128 {
-    i128::from(a[0]) * i128::from(b[0]) + i128::from(a[1]) * i128::from(b[1])
+fn dot(a: Dir, b: Dir) -> i64 {
+    a[0] * b[0] + a[1] * b[1]
 }
 
 /// The open arc of directions turning counter-clockwise (in the `x`, `y` frame) from `lo`
@@ -192,6 +201,8 @@ pub(crate) struct Separation {
     low: Hull,
     high: Hull,
     normals: Normals,
+    /// The first point added: the others are kept relative to it.
+    origin: Option<Dir>,
 }
 
 /// `clone_from` keeps the target's buffers (a trial copy per step costs no allocation).
@@ -201,6 +212,7 @@ impl Clone for Separation {
             low: self.low.clone(),
             high: self.high.clone(),
             normals: self.normals,
+            origin: self.origin,
         }
     }
 
@@ -208,6 +220,7 @@ impl Clone for Separation {
         self.low.clone_from(&source.low);
         self.high.clone_from(&source.high);
         self.normals = source.normals;
+        self.origin = source.origin;
     }
 }
 
@@ -218,6 +231,7 @@ impl Separation {
             low: Hull::default(),
             high: Hull::default(),
             normals: Normals::All,
+            origin: None,
         }
     }
 
@@ -228,6 +242,7 @@ impl Separation {
             h.sorted.clear();
         }
         self.normals = Normals::All;
+        self.origin = None;
     }
 
     /// True while a line separates the sets strictly.
@@ -247,9 +262,29 @@ impl Separation {
         }
     }
 
+    /// `p` relative to the first point added (`p` itself becomes it when it is the first),
+    /// or `None` (and the sets not separable) when farther than [`MAX_OFFSET`].
+    fn relative(&mut self, p: Dir) -> Option<Dir> {
+        let o = *self.origin.get_or_insert(p);
+        let r = [p[0].checked_sub(o[0]), p[1].checked_sub(o[1])];
+        match r {
+            [Some(x), Some(y)] if x.abs() <= MAX_OFFSET && y.abs() <= MAX_OFFSET => Some([x, y]),
+            _ => {
+                self.normals = Normals::None;
+                None
+            }
+        }
+    }
+
     /// Adds a point to the low side; returns [`Separation::separable`].
     pub(crate) fn add_low(&mut self, p: Dir) -> bool {
-        if self.separable() && self.low.add(p) {
+        if !self.separable() {
+            return false;
+        }
+        let Some(p) = self.relative(p) else {
+            return false;
+        };
+        if self.low.add(p) {
             for &q in &self.high.vertices {
                 self.normals = constrain(self.normals, sub(q, p));
             }
@@ -259,7 +294,13 @@ impl Separation {
 
     /// Adds a point to the high side; returns [`Separation::separable`].
     pub(crate) fn add_high(&mut self, q: Dir) -> bool {
-        if self.separable() && self.high.add(q) {
+        if !self.separable() {
+            return false;
+        }
+        let Some(q) = self.relative(q) else {
+            return false;
+        };
+        if self.high.add(q) {
             for &p in &self.low.vertices {
                 self.normals = constrain(self.normals, sub(q, p));
             }
@@ -413,6 +454,27 @@ mod tests {
             })?;
         }
 
+        /// Far from the origin the answers are those of the same points near it (the
+        /// separation keeps points relative to its first one), and the normal found is the
+        /// same.
+        #[test]
+        fn moved_far_away_answers_the_same(
+            points in prop::collection::vec(((-6i64..6, -6i64..6), any::<bool>()), 1..12),
+            far in (-(1i64 << 40)..(1i64 << 40), -(1i64 << 40)..(1i64 << 40)),
+        ) {
+            let (mut near, mut moved) = (Separation::new(), Separation::new());
+            for ((x, y), is_low) in points {
+                let (p, q) = ([x, y], [x + far.0, y + far.1]);
+                let (a, b) = if is_low {
+                    (near.add_low(p), moved.add_low(q))
+                } else {
+                    (near.add_high(p), moved.add_high(q))
+                };
+                prop_assert_eq!(a, b);
+                prop_assert_eq!(near.normal(), moved.normal());
+            }
+        }
+
         /// The hull holds exactly the points of the set's convex hull.
         #[test]
         fn hull_contains_its_points_only(
@@ -430,6 +492,16 @@ mod tests {
             let q = [probe.0, probe.1];
             prop_assert_eq!(!h.clone().add(q), !all_pairs(&pts, &[q]));
         }
+    }
+
+    #[test]
+    fn a_point_beyond_the_offset_limit_is_not_separable() {
+        let mut s = Separation::new();
+        assert!(s.add_low([i64::MAX, 0]) && s.add_high([i64::MAX, MAX_OFFSET]));
+        assert!(!s.add_high([i64::MIN, 0]));
+        let mut s = Separation::new();
+        assert!(s.add_low([0, 0]) && !s.add_high([0, MAX_OFFSET + 1]));
+        assert!(!s.separable());
     }
 
     #[test]
