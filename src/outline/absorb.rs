@@ -320,22 +320,24 @@ fn changes_nothing(
     }
     // Then the pixels: the loop from the cubic back along the run paints nothing, also
     // moved (up and down too where a tile cuts the cubic), and with the control points
-    // nudged.
+    // nudged. Every check must pass, so their order only sets the work: the nudged loops
+    // (one fill each) go before the loop as it is (three moved fills, tiles, the fine
+    // flattening), which fails alone less often (27 shared samples, conic, 3 198 cubics
+    // tried: 1 824 passed; of the other 1 374, 1 227 failed a nudged loop and 83 the loop
+    // as it is alone; 5 393 -> 5 379 M instructions in all). Nudged left first: those fail
+    // most (862 and 768 times, against 602 and 537 nudged right).
     let lp = difference_loop(a, cubic, cmds);
-    loop_paints_nothing(a, &lp, clipping, canvas, true)
-        && (clips.is_empty() || loop_paints_nothing_in_tiles_moved(a, &lp, canvas))
-        && [
-            (NUDGE, NUDGE),
-            (NUDGE, -NUDGE),
-            (-NUDGE, NUDGE),
-            (-NUDGE, -NUDGE),
-        ]
-        .into_iter()
-        .all(|(dx, dy)| {
-            let d = Vec2::new(dx, dy);
-            let moved = PathCommand::Cubic(p1 + d, p2 + d, e);
-            loop_paints_nothing(a, &difference_loop(a, moved, cmds), clipping, canvas, false)
-        })
+    let nudged = |(dx, dy): (f64, f64)| {
+        let d = Vec2::new(dx, dy);
+        let moved = PathCommand::Cubic(p1 + d, p2 + d, e);
+        loop_paints_nothing(a, &difference_loop(a, moved, cmds), clipping, canvas, false)
+    };
+    (clips.is_empty() || loop_paints_nothing_in_tiles_moved(a, &lp, canvas))
+        && nudged((-NUDGE, -NUDGE))
+        && nudged((-NUDGE, NUDGE))
+        && nudged((NUDGE, NUDGE))
+        && nudged((NUDGE, -NUDGE))
+        && loop_paints_nothing(a, &lp, clipping, canvas, true)
 }
 
 /// The closed path `M start commands Z` with runs of two or more commands along gentle turns
