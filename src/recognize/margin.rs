@@ -168,10 +168,13 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
 
 /// True for the basis `(x, y)` of lines in the plane.
 fn is_line_basis(basis: &dyn Basis) -> bool {
+    // (Compared term by term: a literal of the expected terms allocated five vectors on
+    // every call.)
+    let is = |t: &crate::model::Terms, e: [u32; 2]| matches!(t.as_slice(), [(1, x)] if *x == e);
     basis.point_dim() == 2
         && basis.dim() == 2
         && crate::model::terms_of(basis)
-            .is_some_and(|f| *f == [vec![(1, vec![1, 0])], vec![(1, vec![0, 1])]])
+            .is_some_and(|f| matches!(&*f, [a, b] if is(a, [1, 0]) && is(b, [0, 1])))
 }
 
 /// [`max_margin_direction`] for the line basis, from the convex hulls
@@ -256,4 +259,33 @@ pub fn small_certificate(
         last = Some(a);
     }
     fallback
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Model, PolynomialBasis};
+
+    #[test]
+    fn the_line_basis_is_recognized_by_its_terms() {
+        assert!(is_line_basis(&Model::Line.basis()));
+        assert!(!is_line_basis(&Model::Circle.basis()));
+        assert!(!is_line_basis(&Model::Conic.basis()));
+        // The same functions in the other order, or scaled, are not `(x, y)`.
+        let basis = |f: Vec<crate::model::Terms>| {
+            PolynomialBasis::new(2, f, vec!["a".into(), "b".into()]).expect("a basis")
+        };
+        assert!(is_line_basis(&basis(vec![
+            vec![(1, vec![1, 0])],
+            vec![(1, vec![0, 1])]
+        ])));
+        assert!(!is_line_basis(&basis(vec![
+            vec![(1, vec![0, 1])],
+            vec![(1, vec![1, 0])]
+        ])));
+        assert!(!is_line_basis(&basis(vec![
+            vec![(2, vec![1, 0])],
+            vec![(1, vec![0, 1])]
+        ])));
+    }
 }
