@@ -241,6 +241,7 @@ impl<'a> Stretcher<'a> {
             // The sides found are the segment's (see `sides`): a later point of the
             // segment beside an earlier one on the right would have ended it.
             let border = self.border_between(&self.line, i, &low_list, &high_list, false);
+            debug_assert_eq!(border, self.closed_border(&self.line, i, j, false));
             out.push(self.straight_or_cracks(i, j, border));
             i = j + 1;
         }
