@@ -261,16 +261,21 @@ pub(crate) fn smooth_polygon(
                     <= MAX_OFF_POLYGON * MAX_OFF_POLYGON
             })
         };
+        // Every check must pass, so their order only sets the work: the nudged loops (one
+        // fill each) before the loop as it is (three moved fills, tiles, the fine
+        // flattening), left nudges first (27 shared samples, conic: of 3 486 cubics checked,
+        // 2 101 failed; the nudges (−,−), (−,+), (+,−), (+,+) failed 1 516, 1 346, 1 294 and
+        // 1 092 times, the loop as it is alone 62).
         gentle
             && chord_estimate(a, p1, p2, e) >= MORE_THAN_TWO_CHORDS
             && near_polygon()
-            && paints_nothing(j, len, cubic, true)
-            && [(D, D), (D, -D), (-D, D), (-D, -D)]
+            && [(-D, -D), (-D, D), (D, -D), (D, D)]
                 .into_iter()
                 .all(|(dx, dy)| {
                     let d = Vec2::new(dx, dy);
                     paints_nothing(j, len, PathCommand::Cubic(p1 + d, p2 + d, e), false)
                 })
+            && paints_nothing(j, len, cubic, true)
     };
     // Pairs from the first line on; a pair that cannot merge leaves its second line to the
     // next pair.
