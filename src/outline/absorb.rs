@@ -39,7 +39,7 @@ use super::chops::drawn_parts;
 use super::cracks::Cracks;
 use super::cubic_fit::{reparametrize, Fit, Sample};
 use super::render_check::EdgeClipping;
-use super::robust::loop_paints_nothing;
+use super::robust::{cubic_paints_nothing, loop_paints_nothing};
 use super::smooth::{chord_estimate, MAX_TURN_DEGREES};
 use super::tiles::{cutting_clips, loop_paints_nothing_in_tiles_moved};
 use crate::curve::PathCommand;
@@ -72,9 +72,6 @@ const PART_MARGIN: i64 = 2;
 /// Commands shorter than this (px) from end to end have no direction of their own: the turn
 /// across them is measured between their neighbours.
 const MIN_DIRECTED: f64 = 1.0;
-
-/// How far (px) the control points are moved for the robustness check.
-const NUDGE: f64 = 1.0 / 32.0;
 
 /// Cracks whose tolerance is below this (px: the contour runs nearly along the segment
 /// between their pixel centres) are left out of the fit; the renderer check sees them.
@@ -283,7 +280,7 @@ const GIVE_UP_FIRST: f64 = 3.0;
 const GIVE_UP: [f64; FIT_ROUNDS - 1] = [2.0, 1.2];
 
 /// Whether drawing `cubic` from `a` instead of `cmds` changes no pixel, also with its
-/// control points moved by [`NUDGE`] (see the module documentation).
+/// control points moved by [`super::robust::NUDGE`] (see the module documentation).
 fn changes_nothing(
     a: Point,
     cubic: PathCommand,
@@ -320,24 +317,12 @@ fn changes_nothing(
     }
     // Then the pixels: the loop from the cubic back along the run paints nothing, also
     // moved (up and down too where a tile cuts the cubic), and with the control points
-    // nudged. Every check must pass, so their order only sets the work: the nudged loops
-    // (one fill each) go before the loop as it is (three moved fills, tiles, the fine
-    // flattening), which fails alone less often (27 shared samples, conic, 3 198 cubics
-    // tried: 1 824 passed; of the other 1 374, 1 227 failed a nudged loop and 83 the loop
-    // as it is alone; 5 393 -> 5 379 M instructions in all). Nudged left first: those fail
-    // most (862 and 768 times, against 602 and 537 nudged right).
-    let lp = difference_loop(a, cubic, cmds);
-    let nudged = |(dx, dy): (f64, f64)| {
-        let d = Vec2::new(dx, dy);
-        let moved = PathCommand::Cubic(p1 + d, p2 + d, e);
-        loop_paints_nothing(a, &difference_loop(a, moved, cmds), clipping, canvas, false)
-    };
-    (clips.is_empty() || loop_paints_nothing_in_tiles_moved(a, &lp, canvas))
-        && nudged((-NUDGE, -NUDGE))
-        && nudged((-NUDGE, NUDGE))
-        && nudged((NUDGE, NUDGE))
-        && nudged((NUDGE, -NUDGE))
-        && loop_paints_nothing(a, &lp, clipping, canvas, true)
+    // nudged.
+    (clips.is_empty()
+        || loop_paints_nothing_in_tiles_moved(a, &difference_loop(a, cubic, cmds), canvas))
+        && cubic_paints_nothing(cubic, |c, robust| {
+            loop_paints_nothing(a, &difference_loop(a, c, cmds), clipping, canvas, robust)
+        })
 }
 
 /// The closed path `M start commands Z` with runs of two or more commands along gentle turns

@@ -28,7 +28,7 @@
 
 use super::builder::Builder;
 use super::render_check::{misplaced_pixels, EdgeClipping, Reference};
-use super::robust::loop_paints_nothing;
+use super::robust::{cubic_paints_nothing, loop_paints_nothing};
 use crate::curve::PathCommand;
 use kurbo::{ParamCurve, ParamCurveNearest, Point, Vec2};
 
@@ -233,11 +233,8 @@ pub(crate) fn smooth_polygon(
     // vertices between long segments, bends clearly beyond two chords (Skia may round the
     // estimate otherwise), stays near its polygon all along (no wiggle a zoomed-in view
     // would show), changes nothing, and still changes nothing in tiny-skia with its control
-    // points moved by 1/32 px: Skia's fixed point differs from tiny-skia's, and Chromium
-    // cuts paths at its tiles (1/64 px gave 11 differing pixels in Chromium over the 27
-    // shared samples, conic; 1/32 px, 10; the polygons, 9).
+    // points moved (`cubic_paints_nothing`).
     let robust = |j: usize, len: usize, cubic: PathCommand| {
-        const D: f64 = 1.0 / 32.0;
         let PathCommand::Cubic(p1, p2, e) = cubic else {
             return false;
         };
@@ -261,21 +258,10 @@ pub(crate) fn smooth_polygon(
                     <= MAX_OFF_POLYGON * MAX_OFF_POLYGON
             })
         };
-        // Every check must pass, so their order only sets the work: the nudged loops (one
-        // fill each) before the loop as it is (three moved fills, tiles, the fine
-        // flattening), left nudges first (27 shared samples, conic: of 3 486 cubics checked,
-        // 2 101 failed; the nudges (−,−), (−,+), (+,−), (+,+) failed 1 516, 1 346, 1 294 and
-        // 1 092 times, the loop as it is alone 62).
         gentle
             && chord_estimate(a, p1, p2, e) >= MORE_THAN_TWO_CHORDS
             && near_polygon()
-            && [(-D, -D), (-D, D), (D, -D), (D, D)]
-                .into_iter()
-                .all(|(dx, dy)| {
-                    let d = Vec2::new(dx, dy);
-                    paints_nothing(j, len, PathCommand::Cubic(p1 + d, p2 + d, e), false)
-                })
-            && paints_nothing(j, len, cubic, true)
+            && cubic_paints_nothing(cubic, |c, fine| paints_nothing(j, len, c, fine))
     };
     // Pairs from the first line on; a pair that cannot merge leaves its second line to the
     // next pair.
