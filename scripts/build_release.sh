@@ -15,7 +15,9 @@
 #
 # Profile-guided (PGO), there too: a first build instrumented by rustc (`-Cprofile-generate`,
 # in target/pgo/) converts the training images — samples/ipol/*.png with the conic, line,
-# circle and poly:3 models, and samples/colour/*.png — none of the 16 bundled samples that
+# circle and poly:3 models, samples/colour/*.png, and a generated 1100×800 image
+# (scripts/pgo_training_image.awk: wider than 512 px, so the code that cuts curves at
+# Chromium's tiles is trained too) — none of the 16 bundled samples that
 # the speed comparisons measure; `llvm-profdata` merges the counts, and the shipped binary
 # is built with them (`-Cprofile-use`): the same SVG bytes (the code is the same, laid out
 # and inlined by the counts), 5% fewer instructions (BENCHMARKS.md, stop 47). It needs the
@@ -62,7 +64,7 @@ train() {
         --config "target.$host.rustflags = [$flags, \"-Cprofile-generate=$dir/raw\"]" >&2 \
         || return 0
     bin="$dir/build/$host/release/layertrace"
-    log "training runs (samples/ipol, samples/colour)"
+    log "training runs (samples/ipol, samples/colour, a generated 1100×800 image)"
     local f m
     for f in samples/ipol/*.png; do
         for m in conic line circle poly:3; do
@@ -72,6 +74,10 @@ train() {
     for f in samples/colour/*.png; do
         "$bin" "$f" -o "$dir/out.svg" --threads 1 -q >&2 || return 0
     done
+    # One image larger than Chromium's 512-px tiles, so the code that cuts curves at the
+    # tiles' sides is trained too.
+    awk -f scripts/pgo_training_image.awk > "$dir/large.pbm" || return 0
+    "$bin" "$dir/large.pbm" -o "$dir/out.svg" --threads 1 -q >&2 || return 0
     "$tool" merge -o "$dir/merged.profdata" "$dir/raw" >&2 || return 0
     # Named by its content: cargo sees new flags (and rebuilds) whenever the profile changes.
     local sum
