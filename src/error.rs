@@ -42,6 +42,14 @@ pub enum Error {
         /// The output named second.
         second: PathBuf,
     },
+    /// A signal asked the run to stop ([`crate::interrupt_flags`]) while an
+    /// [`crate::OutputSet`] held temporary files: they are removed and no destination
+    /// changed.
+    #[error("stopped by signal {signal}")]
+    Interrupted {
+        /// The signal's number.
+        signal: i32,
+    },
     /// The input could not be decoded as an image (unknown format, corrupt or truncated data).
     #[error("cannot decode {path}: {source}")]
     Decode {

@@ -130,7 +130,10 @@ pub use outline::{
     contour_path, BorderSource, CommandCounts, ContourPath, EdgeClipping, FallbackCounts,
     JoinCounts, OutlineOptions, Partition, PartitionBorder, DEFAULT_MIN_CURVE_POINTS, MAX_GRID,
 };
-pub use output::{exit_removing_temporaries, png_bytes, write_atomic, OutputId, OutputSet};
+pub use output::{
+    exit_removing_temporaries, interrupt_flags, png_bytes, write_atomic, InterruptFlags, OutputId,
+    OutputSet,
+};
 pub use pixel::Pixel;
 pub use points::{
     point_sets_from_json, read_point_sets, recognition_json, recognize_points,

@@ -2,9 +2,18 @@
 //!
 //! An [`OutputSet`] is checked before any work is done (every destination writable, none the
 //! input, no two the same), holds each output in a temporary file beside its destination
-//! while the run goes on, and puts them all in place only at [`OutputSet::commit`]. A run that
+//! from its write on, and puts them all in place only at [`OutputSet::commit`]. A run that
 //! fails, or is dropped, leaves every destination as it was and no temporary behind;
 //! [`exit_removing_temporaries`] does the same from a signal handler.
+//!
+//! # Signals
+//! Temporary files exist only from an output's [`OutputSet::write`] to the
+//! [`OutputSet::commit`] (a temporary file made and removed at once by [`OutputSet::add`]
+//! proves the directory writable before any work), so a signal handler needs no thread to
+//! remove them ([`interrupt_flags`]): while no temporary file exists, the handler ends the
+//! process at once; while one does, it only records the signal, which the set's next step
+//! (a write, or the commit before its first rename) answers with [`Error::Interrupted`],
+//! removing its temporaries. A commit that has begun to put files in place finishes.
 //!
 //! # Destinations
 //! * `-` is standard output.
@@ -31,13 +40,70 @@ use crate::error::Error;
 use std::fs::{File, Metadata, OpenOptions, Permissions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, MutexGuard};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, LazyLock, Mutex, MutexGuard};
 
 /// Temporary files not yet put in place or removed, for [`exit_removing_temporaries`].
 static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
 fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
     PENDING.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// True while no temporary file exists: cleared (under [`PENDING`]'s lock) before one is
+/// created, set when the last is renamed or removed.
+static NO_TEMPORARIES: LazyLock<Arc<AtomicBool>> =
+    LazyLock::new(|| Arc::new(AtomicBool::new(true)));
+
+/// The number of the signal a handler recorded, 0 for none.
+static CAUGHT: LazyLock<Arc<AtomicUsize>> = LazyLock::new(|| Arc::new(AtomicUsize::new(0)));
+
+/// The flags a signal handler shares with every [`OutputSet`] of the process, for handlers
+/// that cannot remove files themselves (see the module documentation).
+///
+/// With the signal-hook crate, for each signal `sig`:
+/// `flag::register_usize(sig, flags.caught, sig as usize)` and
+/// `flag::register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries)`.
+#[derive(Clone, Debug)]
+pub struct InterruptFlags {
+    /// True exactly while no output set of the process holds a temporary file: a handler
+    /// may end the process at once then.
+    pub no_temporaries: Arc<AtomicBool>,
+    /// Where a handler stores the signal's number; an output set that holds temporary files
+    /// stops with [`Error::Interrupted`] at its next step once it is not 0.
+    pub caught: Arc<AtomicUsize>,
+}
+
+/// The process' [`InterruptFlags`].
+///
+/// ```
+/// let flags = layertrace::interrupt_flags();
+/// // No output set holds a temporary file outside its writes and commit.
+/// assert!(flags.no_temporaries.load(std::sync::atomic::Ordering::SeqCst));
+/// ```
+pub fn interrupt_flags() -> InterruptFlags {
+    InterruptFlags {
+        no_temporaries: Arc::clone(&NO_TEMPORARIES),
+        caught: Arc::clone(&CAUGHT),
+    }
+}
+
+/// [`Error::Interrupted`] if a handler recorded a signal.
+fn check_caught() -> Result<(), Error> {
+    match CAUGHT.load(Ordering::SeqCst) {
+        0 => Ok(()),
+        sig => Err(Error::Interrupted {
+            signal: i32::try_from(sig).unwrap_or(i32::MAX),
+        }),
+    }
+}
+
+/// Removes `path` from the list, setting [`NO_TEMPORARIES`] when it empties.
+fn forget(list: &mut Vec<PathBuf>, path: &Path) {
+    list.retain(|p| p != path);
+    if list.is_empty() {
+        NO_TEMPORARIES.store(true, Ordering::SeqCst);
+    }
 }
 
 /// Removes every temporary file of every [`OutputSet`] of the process and exits with `code`,
@@ -67,12 +133,15 @@ struct Temp {
 }
 
 impl Temp {
-    fn create(dir: &Path, mode: Option<Permissions>) -> std::io::Result<Temp> {
+    fn create(dir: &Path, mode: Option<&Permissions>) -> std::io::Result<Temp> {
         let mut list = pending();
+        // From here on a signal only records itself: the file may exist before the list
+        // names it.
+        NO_TEMPORARIES.store(false, Ordering::SeqCst);
         let mut b = tempfile::Builder::new();
         b.prefix(".layertrace-").suffix(".tmp").rand_bytes(10);
         if let Some(mode) = mode {
-            b.permissions(mode);
+            b.permissions(mode.clone());
         } else {
             #[cfg(unix)]
             {
@@ -81,7 +150,15 @@ impl Temp {
                 b.permissions(Permissions::from_mode(0o666));
             }
         }
-        let file = b.tempfile_in(dir)?;
+        let file = match b.tempfile_in(dir) {
+            Ok(file) => file,
+            Err(e) => {
+                if list.is_empty() {
+                    NO_TEMPORARIES.store(true, Ordering::SeqCst);
+                }
+                return Err(e);
+            }
+        };
         let path = file.path().to_path_buf();
         list.push(path.clone());
         Ok(Temp {
@@ -95,7 +172,7 @@ impl Temp {
         let file = self.file.take().expect("a temporary is persisted once");
         let result = file.persist(target).map(drop).map_err(|e| e.error);
         // On failure the file is removed by the dropped `PersistError`.
-        list.retain(|p| p != &self.path);
+        forget(&mut list, &self.path);
         result
     }
 }
@@ -105,7 +182,7 @@ impl Drop for Temp {
         if let Some(file) = self.file.take() {
             let mut list = pending();
             drop(file); // removes it, while the list still names it
-            list.retain(|p| p != &self.path);
+            forget(&mut list, &self.path);
         }
     }
 }
@@ -133,11 +210,13 @@ enum Sink {
     Stdout { bytes: Option<Vec<u8>> },
     /// A device, FIFO or stream, opened at check time, written at commit, appending.
     InPlace { file: File, bytes: Option<Vec<u8>> },
-    /// A regular file (new or replaced): the temporary beside it, filled by `write`.
+    /// A regular file (new or replaced): the temporary beside it, made and filled by
+    /// `write` in `dir` (with the replaced file's permissions, `mode`).
     Replace {
         target: PathBuf,
-        temp: Temp,
-        written: bool,
+        dir: PathBuf,
+        mode: Option<Permissions>,
+        temp: Option<Temp>,
     },
 }
 
@@ -211,13 +290,15 @@ impl OutputSet {
         }
     }
 
-    /// Checks the destination `path` and prepares it: a temporary file beside it (so its
-    /// directory is known to be writable), or the device opened. Nothing visible changes yet.
+    /// Checks the destination `path` and prepares it: a temporary file made and removed
+    /// beside it (so its directory is known to be writable), or the device opened. Nothing
+    /// visible changes.
     ///
     /// Errors: [`Error::OutputIsInput`] if it resolves to the input file,
     /// [`Error::SameOutput`] if another output of the set goes to the same place,
     /// [`Error::Write`] if it cannot be written (missing or read-only directory, a directory,
-    /// a FIFO without a reader, closed standard output).
+    /// a FIFO without a reader, closed standard output), [`Error::Interrupted`] if a signal
+    /// was recorded (see [`interrupt_flags`]).
     pub fn add(&mut self, path: &Path) -> Result<OutputId, Error> {
         let err = |source| Error::Write {
             path: path.to_path_buf(),
@@ -262,11 +343,15 @@ impl OutputSet {
                     Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
                     _ => PathBuf::from("."),
                 };
-                let temp = Temp::create(&dir, meta.map(|m| m.permissions())).map_err(err)?;
+                let mode = meta.map(|m| m.permissions());
+                drop(Temp::create(&dir, mode.as_ref()).map_err(err)?);
+                // A signal recorded while the probe existed would wait for the first write.
+                check_caught()?;
                 let sink = Sink::Replace {
                     target,
-                    temp,
-                    written: false,
+                    dir,
+                    mode,
+                    temp: None,
                 };
                 (key, sink)
             }
@@ -287,7 +372,8 @@ impl OutputSet {
 
     /// Gives output `id` its content: written to its temporary file now, or kept for the
     /// commit (standard output, devices). Writing an output twice replaces nothing: the
-    /// second call is an error.
+    /// second call is an error. [`Error::Interrupted`] if a signal was recorded before or
+    /// while writing (see [`interrupt_flags`]).
     pub fn write(&mut self, id: OutputId, bytes: Vec<u8>) -> Result<(), Error> {
         let entry = &mut self.entries[id.0];
         let err = |source| Error::Write {
@@ -303,15 +389,19 @@ impl OutputSet {
                 *slot = Some(bytes);
                 Ok(())
             }
-            Sink::Replace { temp, written, .. } => {
-                if *written {
+            Sink::Replace {
+                dir, mode, temp, ..
+            } => {
+                if temp.is_some() {
                     return Err(err(twice()));
                 }
-                *written = true;
+                check_caught()?;
+                let temp = temp.insert(Temp::create(dir, mode.as_ref()).map_err(err)?);
                 let file = temp.file.as_mut().expect("not yet persisted");
                 file.write_all(&bytes)
                     .and_then(|()| file.flush())
-                    .map_err(err)
+                    .map_err(err)?;
+                check_caught()
             }
         }
     }
@@ -319,7 +409,11 @@ impl OutputSet {
     /// Puts every written output in place: regular files first (renames), then standard
     /// output and devices. An output that was added but never written is left untouched.
     /// Once a rename has succeeded it is not undone if a later one fails.
+    /// [`Error::Interrupted`], with nothing put in place, if a signal was recorded before
+    /// (see [`interrupt_flags`]).
     pub fn commit(self) -> Result<(), Error> {
+        // The last moment a signal stops the run: from the first rename on, it finishes.
+        check_caught()?;
         let mut streams = Vec::new();
         for entry in self.entries {
             let err = |source| Error::Write {
@@ -327,12 +421,8 @@ impl OutputSet {
                 source,
             };
             match entry.sink {
-                Sink::Replace {
-                    target,
-                    temp,
-                    written,
-                } => {
-                    if written {
+                Sink::Replace { target, temp, .. } => {
+                    if let Some(temp) = temp {
                         temp.persist(&target).map_err(err)?;
                     }
                 }

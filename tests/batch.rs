@@ -4,9 +4,11 @@
 
 mod common;
 
-use common::{cli_in, names, repo};
+use common::{bin, cli_in, names, repo};
 
 use std::path::Path;
+use std::process::Stdio;
+use std::time::Duration;
 
 const SAMPLES: [&str; 3] = [
     "samples/glyph_g_liberationserif_cap120.png",
@@ -163,4 +165,62 @@ fn impossible_batches_are_refused_before_any_work() {
     let (code, err) = cli_in(d, &["in", "--out-dir", "file/out"]);
     assert_eq!(code, 1, "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
+}
+
+/// SIGINT or SIGTERM during a batch: exit 128 + the signal (or success if it was over), no
+/// temporary file left in the output folder, and every drawing there whole.
+#[cfg(unix)]
+#[test]
+fn signals_stop_a_batch_leaving_whole_files_only() {
+    let dir = inputs();
+    let d = dir.path();
+    // Forty inputs: long enough to be stopped in the middle.
+    for k in 0..40 {
+        std::fs::copy(
+            repo("samples/lineart_cat_symbola_h300.png"),
+            d.join("in").join(format!("cat{k:02}.png")),
+        )
+        .unwrap();
+    }
+    let mut interrupted = 0;
+    for (i, delay_ms) in [30u64, 80, 160, 250, 400, 700].into_iter().enumerate() {
+        let out = d.join(format!("out{i}"));
+        let mut child = bin()
+            .current_dir(d)
+            .args(["in", "--out-dir", out.to_str().unwrap(), "-q"])
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        let (sig, name) = if i % 2 == 0 { (2, "INT") } else { (15, "TERM") };
+        let _ = std::process::Command::new("kill")
+            .args([format!("-{name}"), child.id().to_string()])
+            .status();
+        let status = child.wait().unwrap();
+        let left = if out.exists() {
+            names(&out)
+        } else {
+            Vec::new()
+        };
+        match status.code() {
+            Some(0) => assert_eq!(left.len(), 43, "{delay_ms} ms"),
+            Some(c) => {
+                assert_eq!(c, 128 + sig, "{delay_ms} ms");
+                interrupted += 1;
+            }
+            None => panic!("{delay_ms} ms: killed by the signal itself"),
+        }
+        for name in &left {
+            assert!(name.ends_with(".svg"), "{delay_ms} ms: left {name}");
+            let svg = std::fs::read_to_string(out.join(name)).unwrap();
+            assert!(
+                svg.trim_end().ends_with("</svg>"),
+                "{delay_ms} ms: {name} cut"
+            );
+        }
+    }
+    assert!(
+        interrupted > 0,
+        "no run was interrupted: the test proves nothing"
+    );
 }

@@ -46,6 +46,7 @@ pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
     match run::run(&args) {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),
+        Err(Error::Interrupted { signal }) => ExitCode::from((128 + signal).clamp(0, 255) as u8),
         Err(e) => {
             eprintln!("layertrace: {e}");
             ExitCode::from(exit_code(&e))
@@ -68,6 +69,7 @@ fn recognize_main(argv: Vec<OsString>) -> ExitCode {
     install_signal_handlers();
     match recognize::run(&args) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(Error::Interrupted { signal }) => ExitCode::from((128 + signal).clamp(0, 255) as u8),
         Err(e) => {
             eprintln!("layertrace: {e}");
             ExitCode::from(exit_code(&e))
@@ -105,22 +107,22 @@ fn exit_code(e: &Error) -> u8 {
     }
 }
 
-/// On SIGINT, SIGTERM or SIGHUP: remove the temporary output files and exit with
-/// 128 + the signal's number, leaving every destination as it was.
+/// On SIGINT, SIGTERM or SIGHUP: exit with 128 + the signal's number, leaving every
+/// destination as it was and no temporary file behind — at once while no temporary file
+/// exists (all the computing), else at the output set's next step (it removes them; see
+/// [`layertrace::interrupt_flags`]). No thread: one cost 0.06–0.15 ms of every run.
 fn install_signal_handlers() {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    use signal_hook::flag::{register_conditional_shutdown, register_usize};
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
-            return; // the default dispositions stay: no cleanup, but no other harm
-        };
-        let _ = std::thread::Builder::new()
-            .name("signals".into())
-            .stack_size(64 * 1024)
-            .spawn(move || {
-                if let Some(sig) = signals.forever().next() {
-                    layertrace::exit_removing_temporaries(128 + sig);
-                }
-            });
+        let flags = layertrace::interrupt_flags();
+        for sig in [SIGINT, SIGTERM, SIGHUP] {
+            // Recorded first, so that a signal is never lost between the two actions;
+            // when registering fails the default disposition stays: no cleanup, no other
+            // harm.
+            let _ = register_usize(sig, flags.caught.clone(), sig as usize);
+            let _ = register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries.clone());
+        }
     });
 }

@@ -220,12 +220,17 @@ fn all_or_nothing() {
     let ia = set.add(&a).unwrap();
     let ib = set.add(&b).unwrap();
     assert_eq!(
+        names(dir.path()),
+        ["b.json"],
+        "no temporary before the writes"
+    );
+    set.write(ia, b"new a".to_vec()).unwrap();
+    set.write(ib, b"new b".to_vec()).unwrap();
+    assert_eq!(
         names(dir.path()).len(),
         3,
         "two temporaries exist meanwhile"
     );
-    set.write(ia, b"new a".to_vec()).unwrap();
-    set.write(ib, b"new b".to_vec()).unwrap();
     assert!(set.write(ib, b"again".to_vec()).is_err());
     drop(set);
     assert_eq!(names(dir.path()), ["b.json"]);

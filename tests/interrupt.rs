@@ -1,0 +1,82 @@
+//! A signal recorded while an output set holds temporary files ([`interrupt_flags`]): the
+//! set's next step stops with `Error::Interrupted` and leaves nothing behind. Its own test
+//! binary: the flags are the process', and no other test may see them set.
+
+use layertrace::{interrupt_flags, Error, OutputSet};
+use std::path::Path;
+use std::sync::atomic::Ordering;
+
+/// The names in `dir`, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn a_recorded_signal_stops_the_set_at_its_next_step() {
+    let flags = interrupt_flags();
+    let idle = || flags.no_temporaries.load(Ordering::SeqCst);
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("a.svg"), b"old").unwrap();
+    let (a, b) = (d.join("a.svg"), d.join("b.json"));
+
+    // Checking the destinations leaves no temporary file.
+    let mut outs = OutputSet::new(None);
+    let ia = outs.add(&a).unwrap();
+    let ib = outs.add(&b).unwrap();
+    assert!(idle());
+    assert_eq!(names(d), ["a.svg"]);
+    // A write makes one; a signal recorded then stops the next write, and the dropped set
+    // removes it.
+    outs.write(ia, b"<svg/>".to_vec()).unwrap();
+    assert!(!idle());
+    assert_eq!(names(d).len(), 2);
+    flags.caught.store(2, Ordering::SeqCst);
+    let e = outs.write(ib, b"{}".to_vec()).unwrap_err();
+    assert!(matches!(e, Error::Interrupted { signal: 2 }), "{e}");
+    drop(outs);
+    assert!(idle());
+    assert_eq!(names(d), ["a.svg"]);
+
+    // Still recorded: a new set stops at its first step, before any work.
+    let mut outs = OutputSet::new(None);
+    assert!(matches!(
+        outs.add(&b),
+        Err(Error::Interrupted { signal: 2 })
+    ));
+    assert!(idle());
+    assert_eq!(names(d), ["a.svg"]);
+
+    // Recorded between the writes and the commit: nothing is put in place.
+    flags.caught.store(0, Ordering::SeqCst);
+    let mut outs = OutputSet::new(None);
+    let ia = outs.add(&a).unwrap();
+    let ib = outs.add(&b).unwrap();
+    outs.write(ia, b"<svg/>".to_vec()).unwrap();
+    outs.write(ib, b"{}".to_vec()).unwrap();
+    flags.caught.store(15, Ordering::SeqCst);
+    assert!(matches!(
+        outs.commit(),
+        Err(Error::Interrupted { signal: 15 })
+    ));
+    assert!(idle());
+    assert_eq!(names(d), ["a.svg"]);
+    assert_eq!(std::fs::read(&a).unwrap(), b"old");
+
+    // None recorded: written and put in place, and no temporary file is left.
+    flags.caught.store(0, Ordering::SeqCst);
+    let mut outs = OutputSet::new(None);
+    let ia = outs.add(&a).unwrap();
+    let ib = outs.add(&b).unwrap();
+    outs.write(ia, b"<svg/>".to_vec()).unwrap();
+    outs.write(ib, b"{}".to_vec()).unwrap();
+    outs.commit().unwrap();
+    assert!(idle());
+    assert_eq!(names(d), ["a.svg", "b.json"]);
+    assert_eq!(std::fs::read(&a).unwrap(), b"<svg/>");
+}
