@@ -4,16 +4,17 @@
 //! input, no two the same), holds each output in a temporary file beside its destination
 //! from its write on, and puts them all in place only at [`OutputSet::commit`]. A run that
 //! fails, or is dropped, leaves every destination as it was and no temporary behind;
-//! [`exit_removing_temporaries`] does the same from a signal handler.
+//! [`exit_removing_temporaries`] does the same on a signal, from a thread that waits for it.
 //!
 //! # Signals
 //! Temporary files exist only from an output's [`OutputSet::write`] to the
 //! [`OutputSet::commit`] (a temporary file made and removed at once by [`OutputSet::add`]
-//! proves the directory writable before any work), so a signal handler needs no thread to
-//! remove them ([`interrupt_flags`]): while no temporary file exists, the handler ends the
-//! process at once; while one does, it only records the signal, which the set's next step
-//! (a write, or the commit before its first rename) answers with [`Error::Interrupted`],
-//! removing its temporaries. A commit that has begun to put files in place finishes.
+//! proves the directory writable before any work), so when one thread makes them a signal
+//! handler needs no thread of its own to remove them ([`interrupt_flags`]): while no
+//! temporary file exists, the handler ends the process at once; while one does, it only
+//! records the signal, which the set's next step (a write, or the commit before its first
+//! rename) answers with [`Error::Interrupted`], removing its temporaries. A commit that has
+//! begun to put files in place finishes.
 //!
 //! # Destinations
 //! * `-` is standard output.
@@ -63,11 +64,16 @@ static CAUGHT: LazyLock<Arc<AtomicUsize>> = LazyLock::new(|| Arc::new(AtomicUsiz
 ///
 /// With the signal-hook crate, for each signal `sig`:
 /// `flag::register_usize(sig, flags.caught, sig as usize)` and
-/// `flag::register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries)`.
+/// `flag::register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries)`. Sound when
+/// the handler runs on the thread that makes the temporary files (it then sees
+/// `no_temporaries` exactly); with output sets written from several threads, a handler on
+/// one of them may read the flag just before another creates a file and end the process
+/// leaving that file: use a thread that calls [`exit_removing_temporaries`] there.
 #[derive(Clone, Debug)]
 pub struct InterruptFlags {
-    /// True exactly while no output set of the process holds a temporary file: a handler
-    /// may end the process at once then.
+    /// True while no temporary file exists: the thread that creates one clears it first
+    /// (also for the file [`OutputSet::add`] makes and removes at once), and it is set
+    /// again when the last one is renamed or removed. Not to be stored by anyone else.
     pub no_temporaries: Arc<AtomicBool>,
     /// Where a handler stores the signal's number; an output set that holds temporary files
     /// stops with [`Error::Interrupted`] at its next step once it is not 0.
@@ -107,13 +113,17 @@ fn forget(list: &mut Vec<PathBuf>, path: &Path) {
 }
 
 /// Removes every temporary file of every [`OutputSet`] of the process and exits with `code`,
-/// without returning: for signal handlers (SIGINT, SIGTERM). No output set can create or
-/// rename a temporary file once this has started.
+/// without returning: for a thread that waits for signals (SIGINT, SIGTERM), or after
+/// [`Error::Interrupted`]. Not from a signal handler itself: it locks, allocates and calls
+/// `exit`. No output set can create or rename a temporary file once this has started.
 ///
 /// ```
-/// // In a signal handler (here with the signal-hook crate), after the outputs are set up:
-/// // signal_hook::low_level::register(signal_hook::consts::SIGINT, || {
-/// //     layertrace::exit_removing_temporaries(130)
+/// // On a thread of its own (here with signal-hook's `iterator` feature):
+/// // let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])?;
+/// // std::thread::spawn(move || {
+/// //     if let Some(sig) = signals.forever().next() {
+/// //         layertrace::exit_removing_temporaries(128 + sig)
+/// //     }
 /// // });
 /// let _: fn(i32) -> ! = layertrace::exit_removing_temporaries;
 /// ```

@@ -98,17 +98,6 @@ fn destinations(files: &[PathBuf], dir: &Path, format: Format) -> Result<Vec<Pat
     Ok(out)
 }
 
-/// Ends the process with 128 + the signal's number, removing every temporary file, if a
-/// signal handler recorded one.
-fn stop_if_signalled() {
-    let caught = layertrace::interrupt_flags()
-        .caught
-        .load(std::sync::atomic::Ordering::SeqCst);
-    if caught != 0 {
-        layertrace::exit_removing_temporaries(128 + i32::try_from(caught).unwrap_or(0));
-    }
-}
-
 /// Vectorizes every input into `dir`, in parallel. Returns whether all succeeded; the
 /// failures are named on standard error as they happen.
 pub fn run(args: &Args, dir: &Path, pool: Option<Arc<rayon::ThreadPool>>) -> Result<bool, Error> {
@@ -136,15 +125,8 @@ pub fn run(args: &Args, dir: &Path, pool: Option<Arc<rayon::ThreadPool>>) -> Res
             let mut opts = options(args, &outputs, pool.clone());
             // The memory limit is shared by the inputs processed at the same time.
             opts.max_memory /= concurrent;
-            // A signal recorded while some file's outputs held temporary files (see
-            // `install_signal_handlers`) ends the batch as soon as a worker sees it.
-            stop_if_signalled();
             match one(args, file, &outputs, &opts) {
-                Err(Error::Interrupted { signal }) => {
-                    layertrace::exit_removing_temporaries(128 + signal)
-                }
                 Ok(done) => {
-                    stop_if_signalled();
                     let text = done.text(args.quiet);
                     if !text.is_empty() {
                         bar.println(&text);

@@ -10,6 +10,7 @@ mod recognize;
 mod run;
 #[cfg(feature = "serve")]
 mod serve;
+mod signals;
 
 use clap::Parser;
 use layertrace::Error;
@@ -42,11 +43,16 @@ pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
-    install_signal_handlers();
+    signals::install(if args.out_dir.is_some() {
+        signals::Writers::Workers
+    } else {
+        signals::Writers::Main
+    });
     match run::run(&args) {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),
-        Err(Error::Interrupted { signal }) => ExitCode::from((128 + signal).clamp(0, 255) as u8),
+        // Whatever error followed a recorded signal, the signal ends the run.
+        Err(_) if let Some(signal) = signals::recorded() => signals::exit_code(signal),
         Err(e) => {
             eprintln!("layertrace: {e}");
             ExitCode::from(exit_code(&e))
@@ -66,10 +72,10 @@ fn recognize_main(argv: Vec<OsString>) -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
-    install_signal_handlers();
+    signals::install(signals::Writers::Main);
     match recognize::run(&args) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(Error::Interrupted { signal }) => ExitCode::from((128 + signal).clamp(0, 255) as u8),
+        Err(_) if let Some(signal) = signals::recorded() => signals::exit_code(signal),
         Err(e) => {
             eprintln!("layertrace: {e}");
             ExitCode::from(exit_code(&e))
@@ -105,24 +111,4 @@ fn exit_code(e: &Error) -> u8 {
         Error::SameOutput { .. } | Error::Arguments(_) | Error::UnknownFormat { .. } => 2,
         _ => 1,
     }
-}
-
-/// On SIGINT, SIGTERM or SIGHUP: exit with 128 + the signal's number, leaving every
-/// destination as it was and no temporary file behind — at once while no temporary file
-/// exists (all the computing), else at the output set's next step (it removes them; see
-/// [`layertrace::interrupt_flags`]). No thread: one cost 0.06–0.15 ms of every run.
-fn install_signal_handlers() {
-    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
-    use signal_hook::flag::{register_conditional_shutdown, register_usize};
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let flags = layertrace::interrupt_flags();
-        for sig in [SIGINT, SIGTERM, SIGHUP] {
-            // Recorded first, so that a signal is never lost between the two actions;
-            // when registering fails the default disposition stays: no cleanup, no other
-            // harm.
-            let _ = register_usize(sig, flags.caught.clone(), sig as usize);
-            let _ = register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries.clone());
-        }
-    });
 }

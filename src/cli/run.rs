@@ -191,12 +191,15 @@ pub fn one(
     let diff_out = add("--diff", outputs.diff.as_ref())?;
 
     // The outputs are moved out of `v`, not copied: an SVG or JSON can be hundreds of MB.
+    // Every output is encoded before the first is written: no temporary file exists while
+    // the run computes, so a signal ends it at once (see `signals`).
     let mut v = vectorize(input, options)?;
+    let mut encoded: Vec<(layertrace::OutputId, Vec<u8>)> = Vec::new();
     if let (Some(id), Some(json)) = (json_out, v.json.take()) {
-        outs.write(id, json.into_bytes())?;
+        encoded.push((id, json.into_bytes()));
     }
     if let (Some(id), Some(png)) = (picture_out, v.picture.take()) {
-        outs.write(id, png)?;
+        encoded.push((id, png));
     }
     if let (Some(id), Some(path)) = (diff_out, &outputs.diff) {
         let picture = match (&v.fidelity, &v.colour) {
@@ -212,7 +215,7 @@ pub fn one(
                 path: path.clone(),
                 source,
             })?;
-            outs.write(id, bytes)?;
+            encoded.push((id, bytes));
         }
     }
     let mut report = if args.report && args.turdsize > 0 {
@@ -224,10 +227,13 @@ pub fn one(
         report += &self::report(&v)?;
     }
     if let (Some(id), Some(drawing), Some(svg)) = (svg_out, &outputs.svg, v.svg.as_mut()) {
-        outs.write(
+        encoded.push((
             id,
             document_bytes(std::mem::take(&mut svg.svg), drawing.format)?,
-        )?;
+        ));
+    }
+    for (id, bytes) in encoded {
+        outs.write(id, bytes)?;
     }
     outs.commit()?;
     // Not computed when it is not shown: classifying every piece took 1% of a run on noise.
