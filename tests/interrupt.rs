@@ -2,18 +2,21 @@
 //! set's next step stops with `Error::Interrupted` and leaves nothing behind. Its own test
 //! binary: the flags are the process', and no other test may see them set.
 
+mod common;
+
+use common::names;
 use layertrace::{interrupt_flags, Error, OutputSet};
 use std::path::Path;
 use std::sync::atomic::Ordering;
 
-/// The names in `dir`, sorted.
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+/// A set with `<svg/>` written to `a` and `{}` to `b`, not committed.
+fn written(a: &Path, b: &Path) -> OutputSet {
+    let mut outs = OutputSet::new(None);
+    let ia = outs.add(a).unwrap();
+    let ib = outs.add(b).unwrap();
+    outs.write(ia, b"<svg/>".to_vec()).unwrap();
+    outs.write(ib, b"{}".to_vec()).unwrap();
+    outs
 }
 
 #[test]
@@ -54,11 +57,7 @@ fn a_recorded_signal_stops_the_set_at_its_next_step() {
 
     // Recorded between the writes and the commit: nothing is put in place.
     flags.caught.store(0, Ordering::SeqCst);
-    let mut outs = OutputSet::new(None);
-    let ia = outs.add(&a).unwrap();
-    let ib = outs.add(&b).unwrap();
-    outs.write(ia, b"<svg/>".to_vec()).unwrap();
-    outs.write(ib, b"{}".to_vec()).unwrap();
+    let outs = written(&a, &b);
     flags.caught.store(15, Ordering::SeqCst);
     assert!(matches!(
         outs.commit(),
@@ -70,12 +69,7 @@ fn a_recorded_signal_stops_the_set_at_its_next_step() {
 
     // None recorded: written and put in place, and no temporary file is left.
     flags.caught.store(0, Ordering::SeqCst);
-    let mut outs = OutputSet::new(None);
-    let ia = outs.add(&a).unwrap();
-    let ib = outs.add(&b).unwrap();
-    outs.write(ia, b"<svg/>".to_vec()).unwrap();
-    outs.write(ib, b"{}".to_vec()).unwrap();
-    outs.commit().unwrap();
+    written(&a, &b).commit().unwrap();
     assert!(idle());
     assert_eq!(names(d), ["a.svg", "b.json"]);
     assert_eq!(std::fs::read(&a).unwrap(), b"<svg/>");
