@@ -64,16 +64,18 @@ static CAUGHT: LazyLock<Arc<AtomicUsize>> = LazyLock::new(|| Arc::new(AtomicUsiz
 ///
 /// With the signal-hook crate, for each signal `sig`:
 /// `flag::register_usize(sig, flags.caught, sig as usize)` and
-/// `flag::register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries)`. Sound when
-/// the handler runs on the thread that makes the temporary files (it then sees
-/// `no_temporaries` exactly); with output sets written from several threads, a handler on
-/// one of them may read the flag just before another creates a file and end the process
-/// leaving that file: use a thread that calls [`exit_removing_temporaries`] there.
+/// `flag::register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries)`, in that
+/// order (record, then end): whatever thread runs the handler, either it finds the flag
+/// cleared or the thread about to create a temporary file finds the signal and makes none.
+/// A recorded signal is answered by the sets that hold temporary files, at their next
+/// step; the caller ends the process then (with several sets written from several threads,
+/// a thread that calls [`exit_removing_temporaries`] answers every set at once).
 #[derive(Clone, Debug)]
 pub struct InterruptFlags {
     /// True while no temporary file exists: the thread that creates one clears it first
-    /// (also for the file [`OutputSet::add`] makes and removes at once), and it is set
-    /// again when the last one is renamed or removed. Not to be stored by anyone else.
+    /// (also for the file [`OutputSet::add`] makes and removes at once) and then looks for
+    /// a recorded signal, and it is set again when the last one is renamed or removed. Not
+    /// to be stored by anyone else.
     pub no_temporaries: Arc<AtomicBool>,
     /// Where a handler stores the signal's number; an output set that holds temporary files
     /// stops with [`Error::Interrupted`] at its next step once it is not 0.
@@ -94,13 +96,21 @@ pub fn interrupt_flags() -> InterruptFlags {
     }
 }
 
+impl InterruptFlags {
+    /// The signal a handler recorded in `caught`, if any.
+    pub fn recorded(&self) -> Option<i32> {
+        match self.caught.load(Ordering::SeqCst) {
+            0 => None,
+            sig => Some(i32::try_from(sig).unwrap_or(i32::MAX)),
+        }
+    }
+}
+
 /// [`Error::Interrupted`] if a handler recorded a signal.
 fn check_caught() -> Result<(), Error> {
-    match CAUGHT.load(Ordering::SeqCst) {
-        0 => Ok(()),
-        sig => Err(Error::Interrupted {
-            signal: i32::try_from(sig).unwrap_or(i32::MAX),
-        }),
+    match interrupt_flags().recorded() {
+        None => Ok(()),
+        Some(signal) => Err(Error::Interrupted { signal }),
     }
 }
 
@@ -145,9 +155,17 @@ struct Temp {
 impl Temp {
     fn create(dir: &Path, mode: Option<&Permissions>) -> std::io::Result<Temp> {
         let mut list = pending();
-        // From here on a signal only records itself: the file may exist before the list
-        // names it.
+        // From here on a handler only records a signal: the file may exist before the list
+        // names it. Then a signal recorded before is looked for: a handler records before
+        // it reads the flag, and all four accesses are sequentially consistent, so either
+        // it reads the flag cleared or this reads its signal — whatever thread it runs on.
         NO_TEMPORARIES.store(false, Ordering::SeqCst);
+        if CAUGHT.load(Ordering::SeqCst) != 0 {
+            if list.is_empty() {
+                NO_TEMPORARIES.store(true, Ordering::SeqCst);
+            }
+            return Err(std::io::ErrorKind::Interrupted.into());
+        }
         let mut b = tempfile::Builder::new();
         b.prefix(".layertrace-").suffix(".tmp").rand_bytes(10);
         if let Some(mode) = mode {
@@ -195,6 +213,18 @@ impl Drop for Temp {
             forget(&mut list, &self.path);
         }
     }
+}
+
+/// A temporary file in `dir` for the output `path`: [`Error::Interrupted`] if a signal was
+/// recorded before it was made or meanwhile (then it is removed), else [`Error::Write`] if
+/// it cannot be made.
+fn make_temp(dir: &Path, mode: Option<&Permissions>, path: &Path) -> Result<Temp, Error> {
+    let made = Temp::create(dir, mode);
+    check_caught()?;
+    made.map_err(|source| Error::Write {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Identity of an existing file (device and inode on Unix).
@@ -354,7 +384,7 @@ impl OutputSet {
                     _ => PathBuf::from("."),
                 };
                 let mode = meta.map(|m| m.permissions());
-                drop(Temp::create(&dir, mode.as_ref()).map_err(err)?);
+                drop(make_temp(&dir, mode.as_ref(), path)?);
                 // A signal recorded while the probe existed would wait for the first write.
                 check_caught()?;
                 let sink = Sink::Replace {
@@ -405,8 +435,7 @@ impl OutputSet {
                 if temp.is_some() {
                     return Err(err(twice()));
                 }
-                check_caught()?;
-                let temp = temp.insert(Temp::create(dir, mode.as_ref()).map_err(err)?);
+                let temp = temp.insert(make_temp(dir, mode.as_ref(), &entry.path)?);
                 let file = temp.file.as_mut().expect("not yet persisted");
                 file.write_all(&bytes)
                     .and_then(|()| file.flush())

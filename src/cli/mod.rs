@@ -51,12 +51,7 @@ pub fn main(argv: impl IntoIterator<Item = OsString>) -> ExitCode {
     match run::run(&args) {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),
-        // Whatever error followed a recorded signal, the signal ends the run.
-        Err(_) if let Some(signal) = signals::recorded() => signals::exit_code(signal),
-        Err(e) => {
-            eprintln!("layertrace: {e}");
-            ExitCode::from(exit_code(&e))
-        }
+        Err(e) => failed(&e),
     }
 }
 
@@ -75,11 +70,7 @@ fn recognize_main(argv: Vec<OsString>) -> ExitCode {
     signals::install(signals::Writers::Main);
     match recognize::run(&args) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(_) if let Some(signal) = signals::recorded() => signals::exit_code(signal),
-        Err(e) => {
-            eprintln!("layertrace: {e}");
-            ExitCode::from(exit_code(&e))
-        }
+        Err(e) => failed(&e),
     }
 }
 
@@ -102,6 +93,18 @@ fn serve_main(argv: Vec<OsString>) -> ExitCode {
             eprintln!("layertrace: {e}");
             ExitCode::from(1)
         }
+    }
+}
+
+/// Names `e` on standard error (not a signal's stop) and gives the exit code: 128 + the
+/// signal when a handler recorded one, whatever error followed it, else [`exit_code`].
+fn failed(e: &Error) -> ExitCode {
+    if !matches!(e, Error::Interrupted { .. }) {
+        eprintln!("layertrace: {e}");
+    }
+    match signals::recorded() {
+        Some(signal) => signals::exit_code(signal),
+        None => ExitCode::from(exit_code(e)),
     }
 }
 

@@ -2,19 +2,17 @@
 //! destination as it was and no temporary file behind.
 //!
 //! Two ways, by who creates the temporary files:
-//! * One input (on Linux): no thread. The main thread makes every temporary file, and only
-//!   after all the computing ([`super::run::one`] encodes every output before its first
-//!   write). The handlers end the process at once while
-//!   [`layertrace::interrupt_flags`]' `no_temporaries` is set, else only record the signal,
-//!   which the output set answers at its next step (`Error::Interrupted`, its files
-//!   removed). Linux runs a signal sent to the process on its main thread unless that
-//!   thread already has one pending — and then the main thread runs no code of its own
-//!   until it has run the handler — so a handler never sees the flag set while the main
-//!   thread is between clearing it and creating a file. A thread cost 0.08–0.15 ms of every
-//!   run (2–3% of a glyph's).
-//! * Many inputs (`--out-dir`, files made by the workers), and elsewhere than Linux: a thread
-//!   waits for the signals and calls [`layertrace::exit_removing_temporaries`], which holds
-//!   the list of temporary files while it removes them and exits.
+//! * One input: no thread. The main thread makes every temporary file, and only after all
+//!   the computing ([`super::run::one`] encodes every output before its first write). The
+//!   handlers end the process at once while [`layertrace::interrupt_flags`]'
+//!   `no_temporaries` is set, else only record the signal, which the output set answers at
+//!   its next step (`Error::Interrupted`, its files removed; sound whatever thread runs the
+//!   handler, see [`layertrace::InterruptFlags`]). A thread cost 0.08–0.15 ms of every run
+//!   (2–3% of a glyph's).
+//! * Many inputs (`--out-dir`): the workers write their inputs' files while others compute,
+//!   and a signal must end them all at once: a thread waits for the signals and calls
+//!   [`layertrace::exit_removing_temporaries`], which holds the list of temporary files
+//!   while it removes them and exits.
 
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
@@ -29,12 +27,20 @@ pub enum Writers {
     Workers,
 }
 
-/// Installs the handlers (once per process; see the module documentation).
+/// Installs the handlers (once per process; see the module documentation). Should neither
+/// way be set up, the signals end the process at once, without cleanup.
 pub fn install(writers: Writers) {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        if !(cfg!(target_os = "linux") && writers == Writers::Main && without_thread()) {
-            with_thread();
+        let installed = match writers {
+            Writers::Main => without_thread() || with_thread(),
+            Writers::Workers => with_thread(),
+        };
+        if !installed {
+            for sig in SIGNALS {
+                let always = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+                let _ = signal_hook::flag::register_conditional_shutdown(sig, 128 + sig, always);
+            }
         }
     });
 }
@@ -46,7 +52,7 @@ fn without_thread() -> bool {
     let flags = layertrace::interrupt_flags();
     let mut ids = Vec::new();
     for sig in SIGNALS {
-        // Recorded first: a signal is never lost between the two actions.
+        // Recorded first, then the flag read: the order `InterruptFlags` relies on.
         let Ok(recorded) = register_usize(sig, flags.caught.clone(), sig as usize) else {
             forget(ids);
             return false;
@@ -69,32 +75,27 @@ fn forget(ids: Vec<signal_hook::SigId>) {
     }
 }
 
-/// The thread that removes the temporary files and exits; when it cannot be set up the
-/// default dispositions stay (no cleanup, no other harm).
-fn with_thread() {
+/// The thread that removes the temporary files and exits; false when it cannot be set up.
+fn with_thread() -> bool {
     let Ok(mut signals) = signal_hook::iterator::Signals::new(SIGNALS) else {
-        return;
+        return false;
     };
-    let _ = std::thread::Builder::new()
+    // (Should the spawn fail, the dropped `signals` takes its handlers away.)
+    std::thread::Builder::new()
         .name("signals".into())
         .stack_size(64 * 1024)
         .spawn(move || {
             if let Some(sig) = signals.forever().next() {
                 layertrace::exit_removing_temporaries(128 + sig);
             }
-        });
+        })
+        .is_ok()
 }
 
 /// The signal a handler recorded (the process then ends with 128 + its number, whatever
 /// error the run met after it), if any.
 pub fn recorded() -> Option<i32> {
-    match layertrace::interrupt_flags()
-        .caught
-        .load(std::sync::atomic::Ordering::SeqCst)
-    {
-        0 => None,
-        sig => Some(i32::try_from(sig).unwrap_or(i32::MAX)),
-    }
+    layertrace::interrupt_flags().recorded()
 }
 
 /// The exit code 128 + `signal` (255 beyond).
