@@ -215,6 +215,9 @@ impl Drop for Temp {
     }
 }
 
+/// Bytes written between two looks for a recorded signal in [`OutputSet::write`].
+const WRITE_PIECE: usize = 1 << 22;
+
 /// A temporary file in `dir` for the output `path`: [`Error::Interrupted`] if a signal was
 /// recorded before it was made or meanwhile (then it is removed), else [`Error::Write`] if
 /// it cannot be made.
@@ -437,10 +440,13 @@ impl OutputSet {
                 }
                 let temp = temp.insert(make_temp(dir, mode.as_ref(), &entry.path)?);
                 let file = temp.file.as_mut().expect("not yet persisted");
-                file.write_all(&bytes)
-                    .and_then(|()| file.flush())
-                    .map_err(err)?;
-                check_caught()
+                // In pieces, a recorded signal looked for after each: a large output on slow
+                // storage does not hold up the answer.
+                for piece in bytes.chunks(WRITE_PIECE) {
+                    file.write_all(piece).map_err(err)?;
+                    check_caught()?;
+                }
+                file.flush().map_err(err)
             }
         }
     }
