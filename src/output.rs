@@ -114,12 +114,17 @@ fn check_caught() -> Result<(), Error> {
     }
 }
 
-/// Removes `path` from the list, setting [`NO_TEMPORARIES`] when it empties.
-fn forget(list: &mut Vec<PathBuf>, path: &Path) {
-    list.retain(|p| p != path);
+/// Sets [`NO_TEMPORARIES`] again if `list` (the locked [`PENDING`]) is empty.
+fn settle(list: &[PathBuf]) {
     if list.is_empty() {
         NO_TEMPORARIES.store(true, Ordering::SeqCst);
     }
+}
+
+/// Removes `path` from the list, setting [`NO_TEMPORARIES`] when it empties.
+fn forget(list: &mut Vec<PathBuf>, path: &Path) {
+    list.retain(|p| p != path);
+    settle(list);
 }
 
 /// Removes every temporary file of every [`OutputSet`] of the process and exits with `code`,
@@ -161,9 +166,7 @@ impl Temp {
         // it reads the flag cleared or this reads its signal — whatever thread it runs on.
         NO_TEMPORARIES.store(false, Ordering::SeqCst);
         if CAUGHT.load(Ordering::SeqCst) != 0 {
-            if list.is_empty() {
-                NO_TEMPORARIES.store(true, Ordering::SeqCst);
-            }
+            settle(&list);
             return Err(std::io::ErrorKind::Interrupted.into());
         }
         let mut b = tempfile::Builder::new();
@@ -178,15 +181,7 @@ impl Temp {
                 b.permissions(Permissions::from_mode(0o666));
             }
         }
-        let file = match b.tempfile_in(dir) {
-            Ok(file) => file,
-            Err(e) => {
-                if list.is_empty() {
-                    NO_TEMPORARIES.store(true, Ordering::SeqCst);
-                }
-                return Err(e);
-            }
-        };
+        let file = b.tempfile_in(dir).inspect_err(|_| settle(&list))?;
         let path = file.path().to_path_buf();
         list.push(path.clone());
         Ok(Temp {
