@@ -11,6 +11,7 @@
 //! stairs of cracks only remain where the input has one-pixel features (their corners are
 //! then cut, see [`super::corners`]).
 
+use super::margin_memo::line_margin;
 use super::separation::Separation;
 use super::vertices::side_pixels;
 use crate::curve::Polynomial;
@@ -321,15 +322,20 @@ impl<'a> Stretcher<'a> {
         scaled: bool,
     ) -> Option<(Polynomial, f64)> {
         let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
-        let (low, high): (Vec<[i64; 2]>, Vec<[i64; 2]>) =
-            (low.iter().map(xy).collect(), high.iter().map(xy).collect());
-        let origin = xy(&self.points[first]);
-        let poly = max_margin_direction(basis, &origin, &low, &high, scaled)
-            .and_then(|m| polynomial_of(basis, &origin, &m.direction, m.level))?;
+        let origin = self.points[first];
+        let margin = if !scaled && self.is_line_basis(basis) {
+            line_margin(basis, origin, low, high)
+        } else {
+            let (low, high): (Vec<[i64; 2]>, Vec<[i64; 2]>) =
+                (low.iter().map(xy).collect(), high.iter().map(xy).collect());
+            max_margin_direction(basis, &xy(&origin), &low, &high, scaled)
+        };
+        let poly =
+            margin.and_then(|m| polynomial_of(basis, &xy(&origin), &m.direction, m.level))?;
         let clearance = low
             .iter()
-            .chain(&high)
-            .map(|p| poly.distance_estimate(Point::new(p[0] as f64 + 0.5, p[1] as f64 + 0.5)))
+            .chain(high)
+            .map(|p| poly.distance_estimate(Point::new(f64::from(p.x) + 0.5, f64::from(p.y) + 0.5)))
             .fold(f64::INFINITY, f64::min);
         Some((poly, clearance))
     }
