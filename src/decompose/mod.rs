@@ -47,11 +47,13 @@ use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
 mod budget;
+mod greedy_memo;
 mod optimal;
 mod reach;
 mod shapes;
 mod window;
 pub use budget::{Cut, WorkBudget};
+use greedy_memo::GreedyMemo;
 pub use optimal::optimal_points;
 use window::Window;
 
@@ -266,13 +268,46 @@ pub fn decompose_points_within(
     rule: OutlierRule,
     budget: WorkBudget,
 ) -> Vec<Piece> {
+    greedy_points(points, rec, rule, budget, None)
+}
+
+/// [`decompose_points_within`], the short pieces taken from `memo` when remembered and
+/// remembered there otherwise (`memo` must be for `rec`'s basis, `rule` and `budget`).
+fn greedy_points(
+    points: &[Pixel],
+    rec: &mut Recognizer,
+    rule: OutlierRule,
+    budget: WorkBudget,
+    mut memo: Option<&mut GreedyMemo>,
+) -> Vec<Piece> {
     let n = points.len();
     let mut pieces = Vec::new();
     let mut w = Window::new(points, rule);
     let mut i = 0;
     while i < n {
+        if let Some(found) = memo.as_deref().and_then(|m| m.find(points, i, rec)) {
+            pieces.push(Piece {
+                first: i,
+                last: found.last,
+                certificate: found.certificate,
+                cut: found.cut,
+            });
+            i = found.last + 1;
+            continue;
+        }
+        let before = memo.is_some().then(|| rec.stats());
         let mut certificate = w.begin(rec, i);
         let stop = w.grow(rec, n - 1, budget, &mut certificate);
+        if let (Some(memo), Some(before)) = (memo.as_deref_mut(), before) {
+            memo.keep(
+                points,
+                i,
+                w.last,
+                stop,
+                &certificate,
+                &rec.stats() - &before,
+            );
+        }
         pieces.push(Piece {
             first: i,
             last: w.last,
@@ -389,8 +424,8 @@ pub(crate) fn decompose_reporting(
 ) -> Decomposition {
     let finished = std::sync::atomic::AtomicUsize::new(0);
     let basis: Arc<dyn Basis> = Arc::new(model.basis());
-    let one = |c: &Contour, rec: &mut Recognizer| match cover {
-        Cover::Greedy => (0, decompose_points_within(&c.points, rec, rule, budget)),
+    let one = |c: &Contour, rec: &mut Recognizer, greedy: &mut GreedyMemo| match cover {
+        Cover::Greedy => (0, greedy_points(&c.points, rec, rule, budget, Some(greedy))),
         _ => optimal_points(&c.points, wraps(c), rec, rule, budget),
     };
     let per_task = contours
@@ -407,8 +442,14 @@ pub(crate) fn decompose_reporting(
         .par_chunks(per_task)
         .with_max_len(1)
         .map_init(
-            || Recognizer::new(basis.clone(), &[0, 0]),
-            |rec, chunk| match rec.as_mut() {
+            // Short pieces repeat across contours (noise, scans): remembered per worker.
+            || {
+                (
+                    Recognizer::new(basis.clone(), &[0, 0]),
+                    GreedyMemo::default(),
+                )
+            },
+            |(rec, greedy), chunk| match rec.as_mut() {
                 Some(rec) => {
                     let before = rec.stats();
                     // Tiny contours repeat (noise, halftones): each shape once per task.
@@ -417,7 +458,7 @@ pub(crate) fn decompose_reporting(
                         .iter()
                         .map(|&k| {
                             let c = &contours[k];
-                            memo.pieces(c, wraps(c), rec, |rec| one(c, rec))
+                            memo.pieces(c, wraps(c), rec, |rec| one(c, rec, greedy))
                         })
                         .collect();
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();

@@ -194,6 +194,12 @@ impl Recognizer {
         self.stats
     }
 
+    /// Counts `work` as done by this recognizer: the work of an answer remembered from an
+    /// earlier query on the same sets, so that the stats stay those of asking again.
+    pub(crate) fn count_work(&mut self, work: &Stats) {
+        self.stats += work;
+    }
+
     /// Number of inliers.
     pub fn inlier_count(&self) -> usize {
         self.inliers.len()

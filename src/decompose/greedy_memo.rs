@@ -1,0 +1,224 @@
+//! The greedy's short pieces remembered by the steps that decided them: noise, halftones
+//! and scans repeat the same few short pieces hundreds of thousands of times.
+//!
+//! The greedy piece from point `i` depends only on the points it tried, relative to `i`:
+//! its window's pixels and outliers come from those points alone (the outliers of interior
+//! points, from their neighbours in the window), the recognizer is [`Recognizer::reset`] at
+//! `p_i` and works on coordinates relative to it, exactly, and the budget depends on the
+//! length only. A piece that failed at point `i + m` is decided by the `m` steps
+//! `p_i → p_{i+1} → … → p_{i+m}`; one that reached the contour's last point by the steps to
+//! it and the fact that there are no more. So a memo keyed by those steps (3 bits each: the
+//! contour is 8-connected) returns the piece bit for bit, its certificate's origin moved to
+//! `p_i`.
+//!
+//! No key is a prefix of another: the steps of a stored failure end every piece that starts
+//! with them, and a piece that reached the end was described at every step. So looking the
+//! steps up one at a time, the first hit is the answer.
+//!
+//! The recognizer's [`Stats`] of a remembered piece are counted again by the recognizer for
+//! each copy, so the decomposition's statistics are those of decomposing every piece.
+
+use rustc_hash::FxHashMap as HashMap;
+
+use super::budget::Cut;
+use super::window::Stop;
+use crate::pixel::Pixel;
+use crate::recognize::{Certificate, Extremes, Recognizer, Stats};
+
+/// Most steps of a remembered piece (3 bits each in a `u64` key, with the count and the
+/// end flag).
+const MAX_STEPS: usize = 19;
+
+/// Bit of the key where the number of steps starts.
+const COUNT_SHIFT: u32 = 3 * MAX_STEPS as u32;
+
+/// Bit of the key that marks a piece that reached the contour's last point.
+const END_BIT: u64 = 1 << (COUNT_SHIFT + 5);
+
+/// Pieces kept before the memo starts again: bounds its memory (about 100 bytes each) on
+/// images whose short pieces are all different.
+const MAX_ENTRIES: usize = 1 << 17;
+
+/// A remembered piece: its length after its first point, how it ended, its certificate
+/// (origin left out), and the recognizer's work on it.
+#[derive(Debug)]
+struct Grown {
+    steps: u8,
+    cut: Option<Cut>,
+    coefficients: Vec<i64>,
+    extremes: Extremes,
+    stats: Stats,
+}
+
+/// A piece of the greedy found in the memo.
+#[derive(Debug)]
+pub(super) struct Found {
+    /// Index of its last point.
+    pub last: usize,
+    /// Its certificate, origin at its first point.
+    pub certificate: Certificate,
+    /// Why it ended, as [`Stop::cut`].
+    pub cut: Option<Cut>,
+}
+
+/// The short pieces met so far (see the module documentation), for one model, outlier
+/// rule and budget.
+#[derive(Debug, Default)]
+pub(super) struct GreedyMemo {
+    pieces: HashMap<u64, Grown>,
+}
+
+/// The 3-bit code of the step from `a` to `b`; `None` unless they are 8-neighbours.
+fn step(a: Pixel, b: Pixel) -> Option<u64> {
+    let (dx, dy) = (
+        i64::from(b.x) - i64::from(a.x),
+        i64::from(b.y) - i64::from(a.y),
+    );
+    let code = match (dx, dy) {
+        (1, 0) => 0,
+        (1, 1) => 1,
+        (0, 1) => 2,
+        (-1, 1) => 3,
+        (-1, 0) => 4,
+        (-1, -1) => 5,
+        (0, -1) => 6,
+        (1, -1) => 7,
+        _ => return None,
+    };
+    Some(code)
+}
+
+/// The key of the `m` steps of `points` from `i` (`m ≤ MAX_STEPS`), with the end flag for a
+/// piece that reached the last point. Returns None if a step is not between 8-neighbours.
+fn key(points: &[Pixel], i: usize, m: usize, end: bool) -> Option<u64> {
+    let mut k = 0u64;
+    for j in 0..m {
+        k |= step(points[i + j], points[i + j + 1])? << (3 * j);
+    }
+    k |= (m as u64) << COUNT_SHIFT;
+    Some(if end { k | END_BIT } else { k })
+}
+
+impl GreedyMemo {
+    /// The greedy piece of `points` from `i`, if remembered (its work counted by `rec`).
+    pub(super) fn find(&self, points: &[Pixel], i: usize, rec: &mut Recognizer) -> Option<Found> {
+        let n = points.len();
+        if self.pieces.is_empty() {
+            return None;
+        }
+        let mut k = 0u64;
+        for m in 1..=MAX_STEPS.min(n - 1 - i) {
+            k |= step(points[i + m - 1], points[i + m])? << (3 * (m - 1));
+            let counted = k | (m as u64) << COUNT_SHIFT;
+            let hit = self.pieces.get(&counted).or_else(|| {
+                (i + m + 1 == n)
+                    .then(|| self.pieces.get(&(counted | END_BIT)))
+                    .flatten()
+            });
+            if let Some(g) = hit {
+                rec.count_work(&g.stats);
+                let p = points[i];
+                return Some(Found {
+                    last: i + usize::from(g.steps),
+                    certificate: Certificate {
+                        origin: vec![i64::from(p.x), i64::from(p.y)],
+                        coefficients: g.coefficients.clone(),
+                        extremes: g.extremes,
+                    },
+                    cut: g.cut,
+                });
+            }
+        }
+        None
+    }
+
+    /// Remembers the greedy piece `i..=last` of `points` that ended with `stop`, with the
+    /// recognizer's work on it, when short enough.
+    pub(super) fn keep(
+        &mut self,
+        points: &[Pixel],
+        i: usize,
+        last: usize,
+        stop: Stop,
+        certificate: &Certificate,
+        stats: Stats,
+    ) {
+        // The steps that decided it: to the point that failed, or to the last one.
+        let m = match stop {
+            Stop::End => last - i,
+            _ => last + 1 - i,
+        };
+        if m == 0 || m > MAX_STEPS || i + m >= points.len() {
+            return;
+        }
+        let Some(k) = key(points, i, m, stop == Stop::End) else {
+            return;
+        };
+        if self.pieces.len() >= MAX_ENTRIES {
+            self.pieces.clear();
+        }
+        self.pieces.insert(
+            k,
+            Grown {
+                steps: (last - i) as u8,
+                cut: stop.cut(),
+                coefficients: certificate.coefficients.clone(),
+                extremes: certificate.extremes,
+                stats,
+            },
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{decompose_points_within, greedy_points, OutlierRule, WorkBudget};
+    use super::*;
+    use crate::bitmap::Mask;
+    use crate::contour::{trace, Convention};
+    use crate::model::Model;
+    use proptest::prelude::*;
+    use std::sync::Arc;
+
+    proptest! {
+        /// Random noise: the pieces taken from the memo, and the work counted for them, are
+        /// what the recognizer finds alone for each contour.
+        #[test]
+        fn remembered_pieces_are_the_pieces(
+            bits in prop::collection::vec(any::<bool>(), 24 * 24),
+            model in prop::sample::select(vec![Model::Line, Model::Circle, Model::Conic]),
+            rule in prop::sample::select(vec![OutlierRule::NotInPiece, OutlierRule::Any]),
+        ) {
+            let mask = Mask::from_fn(24, 24, |x, y| bits[(y * 24 + x) as usize]);
+            let contours = trace(&mask, Convention::Default);
+            let basis = Arc::new(model.basis());
+            let budget = WorkBudget::default();
+            let mut memo = GreedyMemo::default();
+            let mut with = Recognizer::new(basis.clone(), &[0, 0]).unwrap();
+            // Twice over: the second pass finds every short piece in the memo.
+            for _ in 0..2 {
+                for c in &contours {
+                    let mut alone = Recognizer::new(basis.clone(), &[0, 0]).unwrap();
+                    let expected = decompose_points_within(&c.points, &mut alone, rule, budget);
+                    let before = with.stats();
+                    let got = greedy_points(&c.points, &mut with, rule, budget, Some(&mut memo));
+                    prop_assert_eq!(&got, &expected);
+                    prop_assert_eq!(&with.stats() - &before, alone.stats());
+                }
+            }
+            prop_assert!(contours.is_empty() || !memo.pieces.is_empty());
+        }
+    }
+
+    #[test]
+    fn steps_are_the_eight_neighbours() {
+        let o = Pixel::new(5, 5);
+        let mut codes: Vec<u64> = (-1..=1)
+            .flat_map(|dy| (-1..=1).map(move |dx| (dx, dy)))
+            .filter_map(|(dx, dy)| step(o, Pixel::new(5 + dx, 5 + dy)))
+            .collect();
+        codes.sort_unstable();
+        assert_eq!(codes, (0..8).collect::<Vec<_>>());
+        assert_eq!(step(o, Pixel::new(7, 5)), None);
+    }
+}
