@@ -57,6 +57,7 @@ mod path;
 mod render_check;
 mod robust;
 mod scan;
+mod segment_memo;
 mod separation;
 mod shapes;
 mod smooth;

@@ -12,6 +12,7 @@
 //! then cut, see [`super::corners`]).
 
 use super::margin_memo::line_margin;
+use super::segment_memo::{self, Segment, SegmentLine};
 use super::separation::Separation;
 use super::vertices::side_pixels;
 use crate::curve::Polynomial;
@@ -19,7 +20,7 @@ use crate::decompose::{neighbour_sides, OutlierRule, Piece};
 use crate::level::{border_polynomial, polynomial_of};
 use crate::model::{Basis, Model, PolynomialBasis};
 use crate::pixel::{Pixel, PixelSet};
-use crate::recognize::max_margin_direction;
+use crate::recognize::{max_margin_direction, MarginDirection};
 use kurbo::Point;
 
 /// Most points of one straight segment of a polygon: longer runs are cut, to meet again at
@@ -195,6 +196,25 @@ impl<'a> Stretcher<'a> {
         let [mut low_list, mut high_list] = std::mem::take(&mut self.sides);
         let mut sep = std::mem::replace(&mut self.separation, Separation::new());
         while i <= last {
+            if let Some(segment) = segment_memo::find(points, i, last) {
+                let border = segment.line.and_then(|line| {
+                    let origin = xy(points[i]);
+                    polynomial_of(
+                        &self.line,
+                        &origin,
+                        &line.margin.direction,
+                        line.margin.level,
+                    )
+                    .map(|poly| (poly, line.clearance))
+                });
+                debug_assert_eq!(
+                    border,
+                    self.closed_border(&self.line, i, segment.last, false)
+                );
+                out.push(self.straight_or_cracks(i, segment.last, border));
+                i = segment.last + 1;
+                continue;
+            }
             sep.clear();
             in_piece.clear();
             high.clear();
@@ -202,6 +222,7 @@ impl<'a> Stretcher<'a> {
             low_list.clear();
             high_list.clear();
             let mut j = i;
+            let mut failed_at = None;
             loop {
                 // (What point `j` adds is dropped again if it ends the segment.)
                 let lengths = (low_list.len(), high_list.len());
@@ -228,6 +249,9 @@ impl<'a> Stretcher<'a> {
                         }
                     }
                 }
+                if !ok {
+                    failed_at = Some(j);
+                }
                 if !ok && j > i {
                     low_list.truncate(lengths.0);
                     high_list.truncate(lengths.1);
@@ -241,8 +265,20 @@ impl<'a> Stretcher<'a> {
             }
             // The sides found are the segment's (see `sides`): a later point of the
             // segment beside an earlier one on the right would have ended it.
-            let border = self.border_between(&self.line, i, &low_list, &high_list, false);
+            let (border, margin) =
+                self.border_and_margin(&self.line, i, &low_list, &high_list, false);
             debug_assert_eq!(border, self.closed_border(&self.line, i, j, false));
+            let segment = Segment {
+                last: j,
+                line: margin.zip(border.as_ref()).map(|(margin, b)| SegmentLine {
+                    margin,
+                    clearance: b.1,
+                }),
+            };
+            // (Not a segment cut at its most points: nothing failed there.)
+            if failed_at.is_some() || j == last {
+                segment_memo::keep(points, i, last, &segment, failed_at);
+            }
             out.push(self.straight_or_cracks(i, j, border));
             i = j + 1;
         }
@@ -321,6 +357,18 @@ impl<'a> Stretcher<'a> {
         high: &[Pixel],
         scaled: bool,
     ) -> Option<(Polynomial, f64)> {
+        self.border_and_margin(basis, first, low, high, scaled).0
+    }
+
+    /// [`Stretcher::border_between`], with the direction and level it was made from.
+    fn border_and_margin(
+        &self,
+        basis: &dyn Basis,
+        first: usize,
+        low: &[Pixel],
+        high: &[Pixel],
+        scaled: bool,
+    ) -> (Option<(Polynomial, f64)>, Option<MarginDirection>) {
         let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
         let origin = self.points[first];
         let margin = if !scaled && self.is_line_basis(basis) {
@@ -330,14 +378,18 @@ impl<'a> Stretcher<'a> {
                 (low.iter().map(xy).collect(), high.iter().map(xy).collect());
             max_margin_direction(basis, &xy(&origin), &low, &high, scaled)
         };
-        let poly =
-            margin.and_then(|m| polynomial_of(basis, &xy(&origin), &m.direction, m.level))?;
+        let Some(poly) = margin
+            .as_ref()
+            .and_then(|m| polynomial_of(basis, &xy(&origin), &m.direction, m.level))
+        else {
+            return (None, margin);
+        };
         let clearance = low
             .iter()
             .chain(high)
             .map(|p| poly.distance_estimate(Point::new(f64::from(p.x) + 0.5, f64::from(p.y) + 0.5)))
             .fold(f64::INFINITY, f64::min);
-        Some((poly, clearance))
+        (Some((poly, clearance)), margin)
     }
 
     /// `first..=last` along its cracks.
