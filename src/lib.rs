@@ -83,6 +83,7 @@ mod pixel;
 mod pixel_flags;
 mod points;
 mod recognize;
+mod steps;
 mod vectorize;
 
 pub use vectorize::{

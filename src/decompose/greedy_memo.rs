@@ -18,22 +18,11 @@
 //! The recognizer's [`Stats`] of a remembered piece are counted again by the recognizer for
 //! each copy, so the decomposition's statistics are those of decomposing every piece.
 
-use rustc_hash::FxHashMap as HashMap;
-
 use super::budget::Cut;
 use super::window::Stop;
 use crate::pixel::Pixel;
 use crate::recognize::{Certificate, Extremes, Recognizer, Stats};
-
-/// Most steps of a remembered piece (3 bits each in a `u64` key, with the count and the
-/// end flag).
-const MAX_STEPS: usize = 19;
-
-/// Bit of the key where the number of steps starts.
-const COUNT_SHIFT: u32 = 3 * MAX_STEPS as u32;
-
-/// Bit of the key that marks a piece that reached the contour's last point.
-const END_BIT: u64 = 1 << (COUNT_SHIFT + 5);
+use crate::steps::{key, key_of, step, StepMap, MAX_STEPS};
 
 /// Pieces kept before the memo starts again: bounds its memory (about 100 bytes each) on
 /// images whose short pieces are all different.
@@ -63,40 +52,17 @@ pub(super) struct Found {
 
 /// The short pieces met so far (see the module documentation), for one model, outlier
 /// rule and budget.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(super) struct GreedyMemo {
-    pieces: HashMap<u64, Grown>,
+    pieces: StepMap<Grown>,
 }
 
-/// The 3-bit code of the step from `a` to `b`; `None` unless they are 8-neighbours.
-fn step(a: Pixel, b: Pixel) -> Option<u64> {
-    let (dx, dy) = (
-        i64::from(b.x) - i64::from(a.x),
-        i64::from(b.y) - i64::from(a.y),
-    );
-    let code = match (dx, dy) {
-        (1, 0) => 0,
-        (1, 1) => 1,
-        (0, 1) => 2,
-        (-1, 1) => 3,
-        (-1, 0) => 4,
-        (-1, -1) => 5,
-        (0, -1) => 6,
-        (1, -1) => 7,
-        _ => return None,
-    };
-    Some(code)
-}
-
-/// The key of the `m` steps of `points` from `i` (`m ≤ MAX_STEPS`), with the end flag for a
-/// piece that reached the last point. Returns None if a step is not between 8-neighbours.
-fn key(points: &[Pixel], i: usize, m: usize, end: bool) -> Option<u64> {
-    let mut k = 0u64;
-    for j in 0..m {
-        k |= step(points[i + j], points[i + j + 1])? << (3 * j);
+impl Default for GreedyMemo {
+    fn default() -> GreedyMemo {
+        GreedyMemo {
+            pieces: StepMap::new(MAX_ENTRIES),
+        }
     }
-    k |= (m as u64) << COUNT_SHIFT;
-    Some(if end { k | END_BIT } else { k })
 }
 
 impl GreedyMemo {
@@ -106,13 +72,13 @@ impl GreedyMemo {
         if self.pieces.is_empty() {
             return None;
         }
-        let mut k = 0u64;
-        for m in 1..=MAX_STEPS.min(n - 1 - i) {
-            k |= step(points[i + m - 1], points[i + m])? << (3 * (m - 1));
-            let counted = k | (m as u64) << COUNT_SHIFT;
-            let hit = self.pieces.get(&counted).or_else(|| {
+        let mut bits = 0u64;
+        // (No key is longer than the memo's longest.)
+        for m in 1..=MAX_STEPS.min(n - 1 - i).min(self.pieces.longest()) {
+            bits |= step(points[i + m - 1], points[i + m])? << (3 * (m - 1));
+            let hit = self.pieces.get(key(bits, m, false)).or_else(|| {
                 (i + m + 1 == n)
-                    .then(|| self.pieces.get(&(counted | END_BIT)))
+                    .then(|| self.pieces.get(key(bits, m, true)))
                     .flatten()
             });
             if let Some(g) = hit {
@@ -151,12 +117,9 @@ impl GreedyMemo {
         if m == 0 || m > MAX_STEPS || i + m >= points.len() {
             return;
         }
-        let Some(k) = key(points, i, m, stop == Stop::End) else {
+        let Some(k) = key_of(points[i..=i + m].iter().copied(), stop == Stop::End) else {
             return;
         };
-        if self.pieces.len() >= MAX_ENTRIES {
-            self.pieces.clear();
-        }
         self.pieces.insert(
             k,
             Grown {
@@ -208,17 +171,5 @@ mod tests {
             }
             prop_assert!(contours.is_empty() || !memo.pieces.is_empty());
         }
-    }
-
-    #[test]
-    fn steps_are_the_eight_neighbours() {
-        let o = Pixel::new(5, 5);
-        let mut codes: Vec<u64> = (-1..=1)
-            .flat_map(|dy| (-1..=1).map(move |dx| (dx, dy)))
-            .filter_map(|(dx, dy)| step(o, Pixel::new(5 + dx, 5 + dy)))
-            .collect();
-        codes.sort_unstable();
-        assert_eq!(codes, (0..8).collect::<Vec<_>>());
-        assert_eq!(step(o, Pixel::new(7, 5)), None);
     }
 }

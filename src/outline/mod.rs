@@ -48,7 +48,6 @@ mod cut;
 mod edges;
 mod extrema;
 mod joins;
-mod margin_memo;
 mod mask_fill;
 mod merge;
 mod nearest;

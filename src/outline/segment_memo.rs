@@ -14,34 +14,28 @@
 //! so the steps are looked up one at a time and the first hit is the answer.
 
 use crate::pixel::Pixel;
-use crate::recognize::MarginDirection;
+use crate::steps::{key, key_of, step, StepMap, MAX_STEPS};
 use std::cell::RefCell;
-
-/// Most steps of a remembered segment (3 bits each in a `u64` key, with the count and the
-/// end flag): segments of up to 16 points.
-const MAX_STEPS: usize = 19;
-
-/// Bit of the key where the number of steps starts.
-const COUNT_SHIFT: u32 = 3 * MAX_STEPS as u32;
-
-/// Bit of the key that marks a segment that reached the end of its stretch.
-const END_BIT: u64 = 1 << (COUNT_SHIFT + 5);
 
 /// Segments kept on one thread before the memo starts again: bounds its memory (a few MB).
 const MAX_ENTRIES: usize = 1 << 16;
 
-/// A segment's line: its direction and level relative to its first point, and the line's
-/// clearance from the segment's side pixels.
-#[derive(Clone, Debug, PartialEq)]
+/// A segment's line: its direction and level relative to its first point (see
+/// [`MarginDirection`](crate::recognize::MarginDirection): the line basis has two
+/// coefficients), and the line's clearance
+/// from the segment's side pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct SegmentLine {
-    /// The largest-margin direction and level (see [`MarginDirection`]).
-    pub margin: MarginDirection,
+    /// The largest-margin direction.
+    pub direction: [f64; 2],
+    /// The level half-way between the two sides.
+    pub level: f64,
     /// Smallest first-order distance (px) from the line to the side pixels' centres.
     pub clearance: f64,
 }
 
 /// A segment found in (or given to) the memo.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Segment {
     /// Index of its last point.
     pub last: usize,
@@ -57,61 +51,43 @@ struct Grown {
 
 thread_local! {
     /// The segments grown on this thread, by the steps that decided them.
-    static MEMO: RefCell<rustc_hash::FxHashMap<u64, Grown>> =
-        RefCell::new(rustc_hash::FxHashMap::default());
+    static MEMO: RefCell<StepMap<Grown>> = RefCell::new(StepMap::new(MAX_ENTRIES));
 }
 
-/// The 3-bit code of the step from `a` to `b`; `None` unless they are 8-neighbours.
-fn step(a: Pixel, b: Pixel) -> Option<u64> {
-    let code = match (
-        i64::from(b.x) - i64::from(a.x),
-        i64::from(b.y) - i64::from(a.y),
-    ) {
-        (1, 0) => 0,
-        (1, 1) => 1,
-        (0, 1) => 2,
-        (-1, 1) => 3,
-        (-1, 0) => 4,
-        (-1, -1) => 5,
-        (0, -1) => 6,
-        (1, -1) => 7,
-        _ => return None,
-    };
-    Some(code)
-}
-
-/// The point `t` places after `p_{i−1}` on the closed contour `points`.
+/// The point `t ≤ n` places after `p_{i−1}` (`i < n`) on the closed contour `points`.
 fn after_previous(points: &[Pixel], i: usize, t: usize) -> Pixel {
     let n = points.len();
-    points[(i + n - 1 + t) % n]
+    let k = i + t + n - 1;
+    points[if k >= 2 * n {
+        k - 2 * n
+    } else if k >= n {
+        k - n
+    } else {
+        k
+    }]
 }
 
 /// The segment of `points` from `i` within the stretch ending at `last`, if remembered.
 pub(super) fn find(points: &[Pixel], i: usize, last: usize) -> Option<Segment> {
-    // Steps to `p_{last+1}`: `last − i + 2`.
-    let most = (last + 2 - i).min(MAX_STEPS);
     MEMO.with(|memo| {
         let memo = memo.borrow();
-        if memo.is_empty() {
-            return None;
-        }
-        let mut k = 0u64;
+        // Steps to `p_{last+1}`: `last − i + 2`; none longer than the memo's longest.
+        let most = (last + 2 - i).min(memo.longest());
+        let mut bits = 0u64;
+        let mut prev = after_previous(points, i, 0);
         for m in 1..=most {
-            let s = step(
-                after_previous(points, i, m - 1),
-                after_previous(points, i, m),
-            )?;
-            k |= s << (3 * (m - 1));
-            let counted = k | (m as u64) << COUNT_SHIFT;
-            let hit = memo.get(&counted).or_else(|| {
+            let p = after_previous(points, i, m);
+            bits |= step(prev, p)? << (3 * (m - 1));
+            prev = p;
+            let hit = memo.get(key(bits, m, false)).or_else(|| {
                 (m == last + 2 - i)
-                    .then(|| memo.get(&(counted | END_BIT)))
+                    .then(|| memo.get(key(bits, m, true)))
                     .flatten()
             });
             if let Some(g) = hit {
                 return Some(Segment {
                     last: i + usize::from(g.extra),
-                    line: g.line.clone(),
+                    line: g.line,
                 });
             }
         }
@@ -137,30 +113,16 @@ pub(super) fn keep(
     if m > MAX_STEPS {
         return;
     }
-    let mut k = 0u64;
-    for t in 1..=m {
-        let Some(s) = step(
-            after_previous(points, i, t - 1),
-            after_previous(points, i, t),
-        ) else {
-            return;
-        };
-        k |= s << (3 * (t - 1));
-    }
-    k |= (m as u64) << COUNT_SHIFT;
-    if failed_at.is_none() {
-        k |= END_BIT;
-    }
+    let run = (0..=m).map(|t| after_previous(points, i, t));
+    let Some(k) = key_of(run, failed_at.is_none()) else {
+        return;
+    };
     MEMO.with(|memo| {
-        let mut memo = memo.borrow_mut();
-        if memo.len() >= MAX_ENTRIES {
-            memo.clear();
-        }
-        memo.insert(
+        memo.borrow_mut().insert(
             k,
             Grown {
                 extra: (segment.last - i) as u8,
-                line: segment.line.clone(),
+                line: segment.line,
             },
         );
     });

@@ -11,7 +11,6 @@
 //! stairs of cracks only remain where the input has one-pixel features (their corners are
 //! then cut, see [`super::corners`]).
 
-use super::margin_memo::line_margin;
 use super::segment_memo::{self, Segment, SegmentLine};
 use super::separation::Separation;
 use super::vertices::side_pixels;
@@ -196,16 +195,12 @@ impl<'a> Stretcher<'a> {
         let [mut low_list, mut high_list] = std::mem::take(&mut self.sides);
         let mut sep = std::mem::replace(&mut self.separation, Separation::new());
         while i <= last {
+            // Short segments repeat (noise, halftones): each grown once per shape.
             if let Some(segment) = segment_memo::find(points, i, last) {
                 let border = segment.line.and_then(|line| {
                     let origin = xy(points[i]);
-                    polynomial_of(
-                        &self.line,
-                        &origin,
-                        &line.margin.direction,
-                        line.margin.level,
-                    )
-                    .map(|poly| (poly, line.clearance))
+                    polynomial_of(&self.line, &origin, &line.direction, line.level)
+                        .map(|poly| (poly, line.clearance))
                 });
                 debug_assert_eq!(
                     border,
@@ -270,13 +265,17 @@ impl<'a> Stretcher<'a> {
             debug_assert_eq!(border, self.closed_border(&self.line, i, j, false));
             let segment = Segment {
                 last: j,
-                line: margin.zip(border.as_ref()).map(|(margin, b)| SegmentLine {
-                    margin,
-                    clearance: b.1,
+                line: margin.zip(border.as_ref()).and_then(|(m, b)| {
+                    Some(SegmentLine {
+                        direction: m.direction.as_slice().try_into().ok()?,
+                        level: m.level,
+                        clearance: b.1,
+                    })
                 }),
             };
-            // (Not a segment cut at its most points: nothing failed there.)
-            if failed_at.is_some() || j == last {
+            // (Not a segment cut at its most points: nothing failed there. A line is kept
+            // with the segment, or none was found.)
+            if (failed_at.is_some() || j == last) && segment.line.is_some() == border.is_some() {
                 segment_memo::keep(points, i, last, &segment, failed_at);
             }
             out.push(self.straight_or_cracks(i, j, border));
@@ -370,24 +369,20 @@ impl<'a> Stretcher<'a> {
         scaled: bool,
     ) -> (Option<(Polynomial, f64)>, Option<MarginDirection>) {
         let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
-        let origin = self.points[first];
-        let margin = if !scaled && self.is_line_basis(basis) {
-            line_margin(basis, origin, low, high)
-        } else {
-            let (low, high): (Vec<[i64; 2]>, Vec<[i64; 2]>) =
-                (low.iter().map(xy).collect(), high.iter().map(xy).collect());
-            max_margin_direction(basis, &xy(&origin), &low, &high, scaled)
-        };
+        let (low, high): (Vec<[i64; 2]>, Vec<[i64; 2]>) =
+            (low.iter().map(xy).collect(), high.iter().map(xy).collect());
+        let origin = xy(&self.points[first]);
+        let margin = max_margin_direction(basis, &origin, &low, &high, scaled);
         let Some(poly) = margin
             .as_ref()
-            .and_then(|m| polynomial_of(basis, &xy(&origin), &m.direction, m.level))
+            .and_then(|m| polynomial_of(basis, &origin, &m.direction, m.level))
         else {
             return (None, margin);
         };
         let clearance = low
             .iter()
-            .chain(high)
-            .map(|p| poly.distance_estimate(Point::new(f64::from(p.x) + 0.5, f64::from(p.y) + 0.5)))
+            .chain(&high)
+            .map(|p| poly.distance_estimate(Point::new(p[0] as f64 + 0.5, p[1] as f64 + 0.5)))
             .fold(f64::INFINITY, f64::min);
         (Some((poly, clearance)), margin)
     }
