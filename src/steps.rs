@@ -18,23 +18,10 @@ const COUNT_SHIFT: u32 = 3 * MAX_STEPS as u32;
 /// Bit of a key that marks a run that reached the end of what it could take.
 const END_BIT: u64 = 1 << (COUNT_SHIFT + 5);
 
-/// The 3-bit code of the step from `a` to `b`; `None` unless they are 8-neighbours.
+/// The 3-bit code of the step from `a` to `b` (its [`Pixel::direction_to`]); `None` unless
+/// they are 8-neighbours.
 pub(crate) fn step(a: Pixel, b: Pixel) -> Option<u64> {
-    let code = match (
-        i64::from(b.x) - i64::from(a.x),
-        i64::from(b.y) - i64::from(a.y),
-    ) {
-        (1, 0) => 0,
-        (1, 1) => 1,
-        (0, 1) => 2,
-        (-1, 1) => 3,
-        (-1, 0) => 4,
-        (-1, -1) => 5,
-        (0, -1) => 6,
-        (1, -1) => 7,
-        _ => return None,
-    };
-    Some(code)
+    a.direction_to(b).map(u64::from)
 }
 
 /// The key of `count` steps (`≤ MAX_STEPS`) whose codes are `bits` (the first in the

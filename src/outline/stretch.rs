@@ -260,8 +260,7 @@ impl<'a> Stretcher<'a> {
             }
             // The sides found are the segment's (see `sides`): a later point of the
             // segment beside an earlier one on the right would have ended it.
-            let (border, margin) =
-                self.border_and_margin(&self.line, i, &low_list, &high_list, false);
+            let (border, margin) = self.border_between(&self.line, i, &low_list, &high_list, false);
             debug_assert_eq!(border, self.closed_border(&self.line, i, j, false));
             let segment = Segment {
                 last: j,
@@ -343,24 +342,12 @@ impl<'a> Stretcher<'a> {
         scaled: bool,
     ) -> Option<(Polynomial, f64)> {
         let (low, high) = side_pixels(self.points, first, last);
-        self.border_between(basis, first, &low, &high, scaled)
+        self.border_between(basis, first, &low, &high, scaled).0
     }
 
     /// [`Stretcher::closed_border`] from the sides of `first..` (its [`side_pixels`], in
-    /// any order).
+    /// any order), with the direction and level it was made from.
     fn border_between(
-        &self,
-        basis: &dyn Basis,
-        first: usize,
-        low: &[Pixel],
-        high: &[Pixel],
-        scaled: bool,
-    ) -> Option<(Polynomial, f64)> {
-        self.border_and_margin(basis, first, low, high, scaled).0
-    }
-
-    /// [`Stretcher::border_between`], with the direction and level it was made from.
-    fn border_and_margin(
         &self,
         basis: &dyn Basis,
         first: usize,
