@@ -11,9 +11,11 @@
 //! contour is 8-connected) returns the piece bit for bit, its certificate's origin moved to
 //! `p_i`.
 //!
-//! No key is a prefix of another: the steps of a stored failure end every piece that starts
-//! with them, and a piece that reached the end was described at every step. So looking the
-//! steps up one at a time, the first hit is the answer.
+//! The steps are looked up one at a time, and the first hit is the answer: a stored failure
+//! ends every piece that starts with its steps, and a piece that reached the end is only
+//! looked up where the contour ends at the same step. (A piece that reached the end of a
+//! shorter contour may share its steps with a longer contour's failure; the end flag keeps
+//! them apart.)
 //!
 //! The recognizer's [`Stats`] of a remembered piece are counted again by the recognizer for
 //! each copy, so the decomposition's statistics are those of decomposing every piece.
@@ -169,7 +171,8 @@ mod tests {
                     prop_assert_eq!(&with.stats() - &before, alone.stats());
                 }
             }
-            prop_assert!(contours.is_empty() || !memo.pieces.is_empty());
+            // (Contours of one point have a piece of no step, which is not kept.)
+            prop_assert!(contours.iter().all(|c| c.points.len() < 2) || !memo.pieces.is_empty());
         }
     }
 }

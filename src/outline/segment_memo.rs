@@ -10,8 +10,10 @@
 //! largest-margin line and that line's clearance are computed relative to `p_i`, from the
 //! same relative pixels. A memo keyed by those steps (3 bits each: the contour is
 //! 8-connected; the end flag) returns the segment's last point, line and clearance bit for
-//! bit. As in the greedy's memo (`decompose::greedy_memo`), no key is a prefix of another,
-//! so the steps are looked up one at a time and the first hit is the answer.
+//! bit. As in the greedy's memo (`decompose::greedy_memo`), the steps are looked up one at a
+//! time and the first hit is the answer: a stored failure ends every segment that starts
+//! with its steps, and one that reached its stretch's end is only looked up where the
+//! stretch ends at the same step.
 
 use crate::pixel::Pixel;
 use crate::steps::{key, key_of, step, StepMap, MAX_STEPS};
@@ -22,8 +24,7 @@ const MAX_ENTRIES: usize = 1 << 16;
 
 /// A segment's line: its direction and level relative to its first point (see
 /// [`MarginDirection`](crate::recognize::MarginDirection): the line basis has two
-/// coefficients), and the line's clearance
-/// from the segment's side pixels.
+/// coefficients), and the line's clearance from the segment's side pixels.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct SegmentLine {
     /// The largest-margin direction.
@@ -54,7 +55,7 @@ thread_local! {
     static MEMO: RefCell<StepMap<Grown>> = RefCell::new(StepMap::new(MAX_ENTRIES));
 }
 
-/// The point `t ≤ n` places after `p_{i−1}` (`i < n`) on the closed contour `points`.
+/// The point `t ≤ n + 1` places after `p_{i−1}` (`i < n`) on the closed contour `points`.
 fn after_previous(points: &[Pixel], i: usize, t: usize) -> Pixel {
     let n = points.len();
     let k = i + t + n - 1;
@@ -96,8 +97,8 @@ pub(super) fn find(points: &[Pixel], i: usize, last: usize) -> Option<Segment> {
 }
 
 /// Remembers `segment`, grown from `i` within the stretch ending at `last`, when it is short
-/// enough: `failed_at` the point that broke the separation (`i` itself for a one-point
-/// segment, else the one after its last), `None` when its growth ended at `last`.
+/// enough: `failed_at` the point that broke the separation (the one after its last, or `i`
+/// itself when even that point alone broke it), `None` when its growth ended at `last`.
 pub(super) fn keep(
     points: &[Pixel],
     i: usize,
@@ -158,26 +159,30 @@ mod tests {
 
     proptest! {
         /// Random noise: each contour's polygon grown afresh, and grown again after the
-        /// same contour elsewhere filled the memo, are the same (lines and all).
+        /// same contour elsewhere filled the memo, are the same (lines and all), for
+        /// stretches of the contour starting and ending anywhere.
         #[test]
         fn remembered_segments_are_the_segments(
             bits in prop::collection::vec(any::<bool>(), 16 * 16),
             shift in (1i32..500, 1i32..500),
             cut in 0usize..8,
+            start in 0usize..8,
         ) {
             let mask = Mask::from_fn(16, 16, |x, y| bits[(y * 16 + x) as usize]);
             for c in trace(&mask, Convention::Default) {
                 let points = &c.points;
                 let n = points.len();
-                // A stretch that ends early too (its end flag).
+                // A stretch that ends early (its end flag) or starts late (the point
+                // before it inside the contour) too.
                 let last = n - 1 - cut.min(n - 1);
+                let first = start.min(last);
                 clear();
-                let fresh = drawn(points, 0, last);
+                let fresh = drawn(points, first, last);
                 clear();
                 let moved: Vec<Pixel> =
                     points.iter().map(|p| Pixel::new(p.x + shift.0, p.y + shift.1)).collect();
-                drawn(&moved, 0, last);
-                let remembered = drawn(points, 0, last);
+                drawn(&moved, first, last);
+                let remembered = drawn(points, first, last);
                 prop_assert_eq!(fresh, remembered);
             }
         }

@@ -28,6 +28,10 @@ use kurbo::Point;
 /// but the side sets and the segment's largest-margin line still grow with it.)
 const MAX_SEGMENT_POINTS: usize = 160;
 
+// A segment cut at its most points is not remembered (`segment_memo` keeps the segments
+// that failed or reached their stretch's end): none is that long within the memo's steps.
+const _: () = assert!(MAX_SEGMENT_POINTS > crate::steps::MAX_STEPS);
+
 /// How a stretch is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Drawing {
