@@ -89,6 +89,7 @@ impl<V> StepMap<V> {
     }
 
     /// True when it holds nothing.
+    #[cfg(test)]
     pub(crate) fn is_empty(&self) -> bool {
         self.map.is_empty()
     }

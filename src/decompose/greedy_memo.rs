@@ -71,11 +71,8 @@ impl GreedyMemo {
     /// The greedy piece of `points` from `i`, if remembered (its work counted by `rec`).
     pub(super) fn find(&self, points: &[Pixel], i: usize, rec: &mut Recognizer) -> Option<Found> {
         let n = points.len();
-        if self.pieces.is_empty() {
-            return None;
-        }
         let mut bits = 0u64;
-        // (No key is longer than the memo's longest.)
+        // (No key is longer than the memo's longest: none at all when it is empty.)
         for m in 1..=MAX_STEPS.min(n - 1 - i).min(self.pieces.longest()) {
             bits |= step(points[i + m - 1], points[i + m])? << (3 * (m - 1));
             let hit = self.pieces.get(key(bits, m, false)).or_else(|| {

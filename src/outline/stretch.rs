@@ -264,18 +264,19 @@ impl<'a> Stretcher<'a> {
             }
             // The sides found are the segment's (see `sides`): a later point of the
             // segment beside an earlier one on the right would have ended it.
-            let (border, margin) = self.border_between(&self.line, i, &low_list, &high_list, false);
-            debug_assert_eq!(border, self.closed_border(&self.line, i, j, false));
+            let found = self.border_between(&self.line, i, &low_list, &high_list, false);
             let segment = Segment {
                 last: j,
-                line: margin.zip(border.as_ref()).and_then(|(m, b)| {
+                line: found.as_ref().and_then(|(_, clearance, m)| {
                     Some(SegmentLine {
                         direction: m.direction.as_slice().try_into().ok()?,
                         level: m.level,
-                        clearance: b.1,
+                        clearance: *clearance,
                     })
                 }),
             };
+            let border = found.map(|(poly, clearance, _)| (poly, clearance));
+            debug_assert_eq!(border, self.closed_border(&self.line, i, j, false));
             // (Not a segment cut at its most points: nothing failed there. A line is kept
             // with the segment, or none was found.)
             if (failed_at.is_some() || j == last) && segment.line.is_some() == border.is_some() {
@@ -346,11 +347,12 @@ impl<'a> Stretcher<'a> {
         scaled: bool,
     ) -> Option<(Polynomial, f64)> {
         let (low, high) = side_pixels(self.points, first, last);
-        self.border_between(basis, first, &low, &high, scaled).0
+        self.border_between(basis, first, &low, &high, scaled)
+            .map(|(poly, clearance, _)| (poly, clearance))
     }
 
     /// [`Stretcher::closed_border`] from the sides of `first..` (its [`side_pixels`], in
-    /// any order), with the direction and level it was made from.
+    /// any order), with the direction and level the curve was made from.
     fn border_between(
         &self,
         basis: &dyn Basis,
@@ -358,24 +360,19 @@ impl<'a> Stretcher<'a> {
         low: &[Pixel],
         high: &[Pixel],
         scaled: bool,
-    ) -> (Option<(Polynomial, f64)>, Option<MarginDirection>) {
+    ) -> Option<(Polynomial, f64, MarginDirection)> {
         let xy = |p: &Pixel| [i64::from(p.x), i64::from(p.y)];
         let (low, high): (Vec<[i64; 2]>, Vec<[i64; 2]>) =
             (low.iter().map(xy).collect(), high.iter().map(xy).collect());
         let origin = xy(&self.points[first]);
-        let margin = max_margin_direction(basis, &origin, &low, &high, scaled);
-        let Some(poly) = margin
-            .as_ref()
-            .and_then(|m| polynomial_of(basis, &origin, &m.direction, m.level))
-        else {
-            return (None, margin);
-        };
+        let margin = max_margin_direction(basis, &origin, &low, &high, scaled)?;
+        let poly = polynomial_of(basis, &origin, &margin.direction, margin.level)?;
         let clearance = low
             .iter()
             .chain(&high)
             .map(|p| poly.distance_estimate(Point::new(p[0] as f64 + 0.5, p[1] as f64 + 0.5)))
             .fold(f64::INFINITY, f64::min);
-        (Some((poly, clearance)), margin)
+        Some((poly, clearance, margin))
     }
 
     /// `first..=last` along its cracks.
