@@ -450,7 +450,8 @@ fn draw_contours(
             })
             .collect();
         let mut new_shapes: Vec<usize> = Vec::new();
-        let mut seen = std::collections::HashSet::new();
+        // (Fx: the std hasher's SipHash of every key took 1.3% of 400² noise's instructions.)
+        let mut seen = rustc_hash::FxHashSet::default();
         for (k, key) in keys.iter().enumerate() {
             if let (Some(key), Some(i)) = (key, ways[k]) {
                 if !memos[i].contains(key) && seen.insert((i, key)) {

@@ -11,7 +11,7 @@
 mod fringe;
 mod quantize;
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::fmt;
 use std::io::{Cursor, Read};
 use std::path::Path;
@@ -234,11 +234,25 @@ pub struct Regions {
 pub fn colour_regions(rgba: &RgbaImage, max_colours: u16) -> Regions {
     let max_colours = max_colours.clamp(1, MAX_COLOURS);
     let (width, height) = rgba.dimensions();
-    let mut histogram: HashMap<Colour, u64> = HashMap::new();
+    // Counted run by run of equal colours (flat regions make long runs): one hash lookup
+    // per run, not per pixel.
+    let mut histogram: HashMap<Colour, u64> = HashMap::default();
+    let mut run: Option<(Colour, u64)> = None;
     for p in rgba.pixels() {
         if p[3] >= OPAQUE_ALPHA {
-            *histogram.entry(Colour::new(p[0], p[1], p[2])).or_default() += 1;
+            let c = Colour::new(p[0], p[1], p[2]);
+            match &mut run {
+                Some((r, k)) if *r == c => *k += 1,
+                _ => {
+                    if let Some((r, k)) = run.replace((c, 1)) {
+                        *histogram.entry(r).or_default() += k;
+                    }
+                }
+            }
         }
+    }
+    if let Some((r, k)) = run {
+        *histogram.entry(r).or_default() += k;
     }
     let exact = histogram.len() <= usize::from(max_colours);
     let mut palette: Vec<(Colour, u64)> = if exact {
@@ -258,11 +272,20 @@ pub fn colour_regions(rgba: &RgbaImage, max_colours: u16) -> Regions {
         .keys()
         .map(|&c| (c, quantize::nearest(&colours, c) as u16))
         .collect();
+    let mut last: Option<(Colour, u16)> = None;
     let mut index: Vec<u16> = rgba
         .pixels()
         .map(|p| {
             if p[3] >= OPAQUE_ALPHA {
-                lookup[&Colour::new(p[0], p[1], p[2])]
+                let c = Colour::new(p[0], p[1], p[2]);
+                match last {
+                    Some((l, i)) if l == c => i,
+                    _ => {
+                        let i = lookup[&c];
+                        last = Some((c, i));
+                        i
+                    }
+                }
             } else {
                 ColourImage::NONE
             }

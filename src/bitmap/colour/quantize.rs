@@ -13,7 +13,7 @@
 //!
 //! Deterministic: no random sampling.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use super::Colour;
 
@@ -153,7 +153,7 @@ mod tests {
     #[test]
     fn at_most_n_colours_near_the_clusters() {
         // Three clusters of colours, with noise: three colours, one near each cluster.
-        let mut h = HashMap::new();
+        let mut h = HashMap::default();
         let centres = [(200u8, 30u8, 30u8), (20, 180, 40), (30, 40, 220)];
         for (i, &(r, g, b)) in centres.iter().enumerate() {
             for d in 0..12u8 {
