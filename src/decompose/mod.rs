@@ -44,7 +44,7 @@ use crate::pixel_flags::StretchSets;
 use crate::recognize::{Certificate, Recognizer, Stats};
 use rayon::prelude::*;
 use std::sync::atomic::Ordering;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 mod budget;
 mod greedy_memo;
@@ -438,27 +438,35 @@ pub(crate) fn decompose_reporting(
     } else {
         (0..contours.len()).collect()
     };
+    // Short pieces repeat across contours (noise, scans): remembered per worker thread.
+    // (Not in `map_init`'s state, which is made afresh for every job: here every chunk.
+    // 2000² noise, one thread: 84% of the pieces outside tiny contours are found in the
+    // worker's memo, 11% were in a memo per chunk.)
+    let greedy_memos: Vec<Mutex<GreedyMemo>> = (0..rayon::current_num_threads().max(1))
+        .map(|_| Mutex::default())
+        .collect();
     let results: Vec<(Vec<Rotated>, Stats)> = order
         .par_chunks(per_task)
         .with_max_len(1)
         .map_init(
-            // Short pieces repeat across contours (noise, scans): remembered per worker.
-            || {
-                (
-                    Recognizer::new(basis.clone(), &[0, 0]),
-                    GreedyMemo::default(),
-                )
-            },
-            |(rec, greedy), chunk| match rec.as_mut() {
+            || Recognizer::new(basis.clone(), &[0, 0]),
+            |rec, chunk| match rec.as_mut() {
                 Some(rec) => {
+                    let worker = rayon::current_thread_index().unwrap_or(0) % greedy_memos.len();
+                    // (Each worker locks its own: no waiting. A memo whose holder panicked
+                    // holds pieces as exact as any.)
+                    let mut greedy = greedy_memos[worker]
+                        .lock()
+                        .unwrap_or_else(std::sync::PoisonError::into_inner);
                     let before = rec.stats();
-                    // Tiny contours repeat (noise, halftones): each shape once per task.
+                    // Tiny contours repeat (noise, halftones): each shape once per task (per
+                    // worker instead: no fewer instructions on noise).
                     let mut memo = shapes::PieceMemo::default();
                     let pieces = chunk
                         .iter()
                         .map(|&k| {
                             let c = &contours[k];
-                            memo.pieces(c, wraps(c), rec, |rec| one(c, rec, greedy))
+                            memo.pieces(c, wraps(c), rec, |rec| one(c, rec, &mut greedy))
                         })
                         .collect();
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
