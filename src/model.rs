@@ -246,6 +246,14 @@ impl Model {
         }
     }
 
+    /// The line model's basis, built once for the process: the drawing asks for it per
+    /// contour (each build allocates its functions and names).
+    pub(crate) fn line_basis() -> &'static PolynomialBasis {
+        static LINE: std::sync::LazyLock<PolynomialBasis> =
+            std::sync::LazyLock::new(|| Model::Line.basis());
+        &LINE
+    }
+
     /// The basis of this model.
     pub fn basis(self) -> PolynomialBasis {
         let b = match self {

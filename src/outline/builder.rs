@@ -38,13 +38,18 @@ pub(crate) struct Builder {
 impl Builder {
     /// A builder snapping to multiples of `2^-grid` pixel (`grid` at most 20).
     pub(crate) fn new(grid: u8) -> Builder {
+        Builder::with_capacity(grid, 0)
+    }
+
+    /// [`Builder::new`] with room for `commands` commands (no reallocation up to there).
+    pub(crate) fn with_capacity(grid: u8, commands: usize) -> Builder {
         Builder {
             scale: f64::from(1u32 << grid.min(20)),
             start: None,
             pen: Point::ZERO,
-            commands: Vec::new(),
+            commands: Vec::with_capacity(commands),
             line_from: None,
-            tags: Vec::new(),
+            tags: Vec::with_capacity(commands),
             smooth: false,
         }
     }

@@ -121,8 +121,9 @@ pub(crate) fn build(
     smooth: bool,
 ) -> Built {
     let mut out = ContourPath::default();
-    let mut b = Builder::new(grid);
     let m = stretches.len();
+    // (A command or two per stretch, mostly: no reallocation.)
+    let mut b = Builder::with_capacity(grid, 2 * m + 4);
     let mut use_curve: Vec<bool> = stretches.iter().map(|s| s.poly.is_some()).collect();
     let mut failed = Vec::new();
     let pixel_cracks = |i: usize| crack_polyline(points, i, i);

@@ -285,7 +285,7 @@ pub fn contour_path(
         let n = contour.points.len();
         if n > 1
             && path.commands.len() >= 3
-            && basis.dim() > crate::model::Model::Line.basis().dim()
+            && basis.dim() > crate::model::Model::line_basis().dim()
         {
             let polyline =
                 polyline.get_or_insert_with(|| crack_polyline(&contour.points, 0, n - 1));

@@ -99,8 +99,8 @@ pub(crate) struct Stretcher<'a> {
     /// The separation [`Stretcher::polygon`] clears for each segment (kept for its hulls'
     /// capacity).
     separation: Separation,
-    /// The line model's basis, built once (its functions are owned vectors).
-    line: PolynomialBasis,
+    /// The line model's basis.
+    line: &'static PolynomialBasis,
 }
 
 impl<'a> Stretcher<'a> {
@@ -113,7 +113,7 @@ impl<'a> Stretcher<'a> {
             scratch: Default::default(),
             sides: Default::default(),
             separation: Separation::new(),
-            line: Model::Line.basis(),
+            line: Model::line_basis(),
         }
     }
 
@@ -203,12 +203,12 @@ impl<'a> Stretcher<'a> {
             if let Some(segment) = segment_memo::find(points, i, last) {
                 let border = segment.line.and_then(|line| {
                     let origin = xy(points[i]);
-                    polynomial_of(&self.line, &origin, &line.direction, line.level)
+                    polynomial_of(self.line, &origin, &line.direction, line.level)
                         .map(|poly| (poly, line.clearance))
                 });
                 debug_assert_eq!(
                     border,
-                    self.closed_border(&self.line, i, segment.last, false)
+                    self.closed_border(self.line, i, segment.last, false)
                 );
                 out.push(self.straight_or_cracks(i, segment.last, border));
                 i = segment.last + 1;
@@ -264,7 +264,7 @@ impl<'a> Stretcher<'a> {
             }
             // The sides found are the segment's (see `sides`): a later point of the
             // segment beside an earlier one on the right would have ended it.
-            let found = self.border_between(&self.line, i, &low_list, &high_list, false);
+            let found = self.border_between(self.line, i, &low_list, &high_list, false);
             let segment = Segment {
                 last: j,
                 line: found.as_ref().and_then(|(_, clearance, m)| {
@@ -276,7 +276,7 @@ impl<'a> Stretcher<'a> {
                 }),
             };
             let border = found.map(|(poly, clearance, _)| (poly, clearance));
-            debug_assert_eq!(border, self.closed_border(&self.line, i, j, false));
+            debug_assert_eq!(border, self.closed_border(self.line, i, j, false));
             // (Not a segment cut at its most points: nothing failed there. A line is kept
             // with the segment, or none was found.)
             if (failed_at.is_some() || j == last) && segment.line.is_some() == border.is_some() {
@@ -295,7 +295,7 @@ impl<'a> Stretcher<'a> {
     /// between its points (with the foreground beside them) and the background beside
     /// them; cracks when there is none.
     fn segment(&mut self, first: usize, last: usize) -> Stretch {
-        let border = self.closed_border(&self.line, first, last, false);
+        let border = self.closed_border(self.line, first, last, false);
         self.straight_or_cracks(first, last, border)
     }
 
