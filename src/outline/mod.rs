@@ -48,6 +48,7 @@ mod cut;
 mod edges;
 mod extrema;
 mod joins;
+mod line_clip;
 mod mask_fill;
 mod merge;
 mod nearest;

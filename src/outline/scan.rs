@@ -13,6 +13,7 @@
 //! fills on random paths.
 
 use super::edges::{Crossing, Crossings, Tag};
+use super::line_clip::clip_line;
 use super::render_check::{has_curves, Reference, Window};
 use crate::curve::PathCommand;
 use kurbo::Point;
@@ -34,7 +35,9 @@ const MAX_WINDOW: i64 = 8191;
 /// about half a pixel, leave the mask, and its edge clipper cuts curves there), an arc, or
 /// a window over [`MAX_WINDOW`] pixels. Lines inside the window, its sides included (a
 /// contour along the document's edge, in a window cut there), the clipper leaves as they
-/// are.
+/// are. A path of lines drawn `clipped` may leave the window: tiny-skia's clipper then
+/// runs on every edge, and each line is clipped as it clips it
+/// ([`super::line_clip`]; Chromium's tiles cut contours so).
 pub(super) fn painted(
     reference: &Reference,
     start: Point,
@@ -105,9 +108,13 @@ fn scanned(
             shift: d,
             first_only,
         };
+        // Lines drawn the clipped way, in one fill: tiny-skia's edge clipper runs on every
+        // edge (`mask_fill`'s sliver puts the path's bounds outside the mask), so the path
+        // may leave the window, each line clipped as tiny-skia clips it.
         let painted = match shift {
-            None => painted_with::<1>(&mut scratch, scan),
-            Some(_) => painted_with::<3>(&mut scratch, scan),
+            None if clipped && !has_curves(commands) => painted_with::<1, true>(&mut scratch, scan),
+            None => painted_with::<1, false>(&mut scratch, scan),
+            Some(_) => painted_with::<3, false>(&mut scratch, scan),
         };
         if scratch.out.capacity() <= MAX_KEPT {
             cell.replace(scratch);
@@ -160,8 +167,9 @@ struct Scan<'a> {
 type Moved = [SkPoint; 3];
 
 /// [`scanned`] with the buffers of `scratch`: `FILLS` 1 (the path as it is) or 3 (also
-/// moved by `±shift`).
-fn painted_with<const FILLS: usize>(
+/// moved by `±shift`); with `CLIP_LINES` (one fill of lines only), every line clipped to
+/// the window as tiny-skia clips it ([`clip_line`]), points outside it allowed.
+fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
     scratch: &mut Scratch,
     scan: Scan<'_>,
 ) -> Option<[Vec<usize>; 3]> {
@@ -189,11 +197,25 @@ fn painted_with<const FILLS: usize>(
     let offsets = [0, k64 << 10, -(k64 << 10)];
     // As `difference_path` hands the points to tiny-skia (a moved path is moved first).
     let margin = if has_curves(commands) { 1.0 } else { 0.0 };
-    let inside =
-        |x: f64, y: f64| x >= margin && y >= margin && x <= wf - margin && y <= hf - margin;
+    let inside = |x: f64, y: f64| {
+        if CLIP_LINES {
+            // (Finite in `f32`: tiny-skia refuses other paths.)
+            (x as f32).is_finite() && (y as f32).is_finite()
+        } else {
+            x >= margin && y >= margin && x <= wf - margin && y <= hf - margin
+        }
+    };
     let at = |p: Point| -> Option<SkPoint> {
         let (x, y) = (p.x - dx, p.y - dy);
         inside(x, y).then(|| SkPoint::from_xy(x as f32, y as f32))
+    };
+    let mask = (w as f32, h as f32);
+    let line = |edges: &mut Crossings, a: SkPoint, b: SkPoint| {
+        if CLIP_LINES {
+            clip_line([a, b], mask, |p, q| edges.line(p, q));
+        } else {
+            edges.line(a, b);
+        }
     };
     let moved = |p: Point| -> Option<Moved> {
         let plain = at(p)?;
@@ -220,7 +242,7 @@ fn painted_with<const FILLS: usize>(
         pen = match *c {
             PathCommand::Line(p) => {
                 let q = moved(p)?;
-                edges.line(pen[0], q[0]);
+                line(&mut edges, pen[0], q[0]);
                 q
             }
             PathCommand::Quad(a, p) => {
@@ -236,17 +258,17 @@ fn painted_with<const FILLS: usize>(
             PathCommand::Arc(_) => return None,
         };
     }
-    edges.line(pen[0], first[0]);
+    line(&mut edges, pen[0], first[0]);
     // The reference reversed: from its start through its vertices backwards, closed.
     edges.tag = Tag::FIXED;
     let rstart = at(reference.start)?;
     let mut pen = rstart;
     for &p in reference.vertices.iter().rev() {
         let q = at(p)?;
-        edges.line(pen, q);
+        line(&mut edges, pen, q);
         pen = q;
     }
-    edges.line(pen, rstart);
+    line(&mut edges, pen, rstart);
     // By row (a counting sort: a large contour's crack polygon crosses thousands of rows a
     // few times each), then by x within each row.
     scratch.out = edges.out;
@@ -495,6 +517,39 @@ mod tests {
             prop_assume!(win.x0 < win.x1 && win.y0 < win.y1);
             let ours = painted(&reference, start, &commands, &win, false).expect("inside");
             prop_assert_eq!(ours, tiny_skia_indices(&reference, start, &commands, &win, false));
+        }
+    }
+
+    proptest! {
+        /// Lines leaving their window, drawn the clipped way (as in Chromium's tiles): the
+        /// scan clips each line as tiny-skia's edge clipper does, and paints the same pixels
+        /// as tiny-skia, for windows cutting random paths of lines on the 1/64-px grid and
+        /// off it, and their references, on any side.
+        #[test]
+        fn lines_leaving_the_window_as_in_tiny_skia(
+            path in prop::collection::vec(any::<[u16; 2]>(), 1..10),
+            start in any::<[u16; 2]>(),
+            refp in prop::collection::vec((0i32..40, 0i32..40), 3..10),
+            grid in prop::sample::select(vec![1.0, 64.0, 1000.0]),
+            off in prop::sample::select(vec![2.0, 41.0]),
+            scale in prop::sample::select(vec![12.0, 40.0, 300.0]),
+            cut in any::<[u8; 4]>(),
+        ) {
+            let lines: Vec<(u8, [u16; 6])> = path.iter().map(|&[x, y]| (0, [x, y, 0, 0, 0, 0])).collect();
+            let (start, commands, reference) = random_path(&lines, start, &refp, grid, off, scale);
+            let round = Window::round(&reference, start, &commands);
+            // Each side moved in by up to half the window.
+            let (w, h) = (round.x1 - round.x0, round.y1 - round.y0);
+            let part = |c: u8, of: i64| i64::from(c) * of / 512;
+            let win = Window {
+                x0: round.x0 + part(cut[0], w),
+                y0: round.y0 + part(cut[1], h),
+                x1: round.x1 - part(cut[2], w),
+                y1: round.y1 - part(cut[3], h),
+            };
+            prop_assume!(win.x0 < win.x1 && win.y0 < win.y1);
+            let ours = painted(&reference, start, &commands, &win, true).expect("lines");
+            prop_assert_eq!(ours, tiny_skia_indices(&reference, start, &commands, &win, true));
         }
     }
 
