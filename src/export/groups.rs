@@ -69,7 +69,7 @@ pub(crate) fn outer_borders(contours: &[Contour]) -> Option<Vec<usize>> {
             }
         }
     }
-    entering.sort_unstable();
+    sort_by_rows(&mut entering);
     let mut holes: Vec<usize> = (0..n).filter(|&k| contours[k].hole).collect();
     holes.sort_unstable_by_key(|&k| first_crack[k]);
     let mut outer: Vec<usize> = (0..n).collect();
@@ -93,6 +93,42 @@ pub(crate) fn outer_borders(contours: &[Contour]) -> Option<Vec<usize>> {
         };
     }
     Some(outer)
+}
+
+/// Sorts `(y, x, k)` entries as `sort_unstable` does: by a counting sort of their rows,
+/// then each row by itself (noise has millions of entries over a few thousand rows: the
+/// sort of them all took 0.7% of 2000² noise's instructions).
+fn sort_by_rows(entries: &mut Vec<(i32, i32, u32)>) {
+    let (Some(lo), Some(hi)) = (
+        entries.iter().map(|e| e.0).min(),
+        entries.iter().map(|e| e.0).max(),
+    ) else {
+        return;
+    };
+    let rows = (i64::from(hi) - i64::from(lo) + 1) as usize;
+    if entries.len() < 1024 || rows > entries.len() {
+        entries.sort_unstable();
+        return;
+    }
+    let row = |e: &(i32, i32, u32)| (e.0 - lo) as usize;
+    let mut starts = vec![0usize; rows + 1];
+    for e in entries.iter() {
+        starts[row(e) + 1] += 1;
+    }
+    for r in 0..rows {
+        starts[r + 1] += starts[r];
+    }
+    let mut next = starts.clone();
+    let mut sorted = vec![(0, 0, 0); entries.len()];
+    for e in entries.iter() {
+        let at = &mut next[row(e)];
+        sorted[*at] = *e;
+        *at += 1;
+    }
+    for span in starts.windows(2) {
+        sorted[span[0]..span[1]].sort_unstable();
+    }
+    *entries = sorted;
 }
 
 /// A tile of Chromium's raster (see [`crate::outline::tiles`]) holding groups of contours:
@@ -269,6 +305,20 @@ mod tests {
                     prop_assert_eq!(outer[k], k);
                 }
             }
+        }
+    }
+
+    proptest::proptest! {
+        /// The counting sort by rows gives `sort_unstable`'s order.
+        #[test]
+        fn rows_then_columns_as_a_sort(
+            entries in proptest::collection::vec((-3i32..40, -5i32..5, 0u32..4), 0..3000),
+        ) {
+            let mut ours = entries.clone();
+            sort_by_rows(&mut ours);
+            let mut expected = entries;
+            expected.sort_unstable();
+            proptest::prop_assert_eq!(ours, expected);
         }
     }
 
