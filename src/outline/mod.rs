@@ -218,7 +218,7 @@ impl References {
 /// The whole contour along its cracks, from its crack corners `polyline`
 /// ([`crack_polyline`]).
 fn cracks_path_through(polyline: &[kurbo::Point]) -> ContourPath {
-    let mut b = Builder::new(0);
+    let mut b = Builder::with_capacity(0, polyline.len());
     b.polyline(polyline);
     let (start, commands) = b.into_commands();
     ContourPath {
