@@ -498,58 +498,39 @@ mod tests {
     }
 
     proptest! {
-        /// Lines in a window that ends where they do (a contour along the document's edge):
-        /// tiny-skia clips them, and paints the same pixels as the scan.
+        /// Lines in windows that cut them, against tiny-skia's own fill, for random paths of
+        /// lines on the 1/64-px grid and off it, and their references. Drawn plain, in a
+        /// window that ends where they do (a contour along the document's edge): tiny-skia
+        /// leaves them as they are. Drawn the clipped way (as in Chromium's tiles), in a
+        /// window cutting them on any side: the scan clips each line as tiny-skia's edge
+        /// clipper does.
         #[test]
-        fn lines_on_the_windows_sides_as_in_tiny_skia(
-            path in prop::collection::vec(any::<[u16; 2]>(), 1..8),
-            start in any::<[u16; 2]>(),
-            refp in prop::collection::vec((0i32..10, 0i32..10), 3..8),
-            grid in prop::sample::select(vec![1.0, 4.0, 64.0]),
-            off in prop::sample::select(vec![2.0, 41.0]),
-        ) {
-            let lines: Vec<(u8, [u16; 6])> = path.iter().map(|&[x, y]| (0, [x, y, 0, 0, 0, 0])).collect();
-            let (start, commands, reference) = random_path(&lines, start, &refp, grid, off, 12.0);
-            let round = Window::round(&reference, start, &commands);
-            // The round window less its two spare pixels: its sides touch the path or the
-            // reference.
-            let win = Window { x0: round.x0 + 2, y0: round.y0 + 2, x1: round.x1 - 2, y1: round.y1 - 2 };
-            prop_assume!(win.x0 < win.x1 && win.y0 < win.y1);
-            let ours = painted(&reference, start, &commands, &win, false).expect("inside");
-            prop_assert_eq!(ours, tiny_skia_indices(&reference, start, &commands, &win, false));
-        }
-    }
-
-    proptest! {
-        /// Lines leaving their window, drawn the clipped way (as in Chromium's tiles): the
-        /// scan clips each line as tiny-skia's edge clipper does, and paints the same pixels
-        /// as tiny-skia, for windows cutting random paths of lines on the 1/64-px grid and
-        /// off it, and their references, on any side.
-        #[test]
-        fn lines_leaving_the_window_as_in_tiny_skia(
+        fn lines_cut_by_their_window_as_in_tiny_skia(
             path in prop::collection::vec(any::<[u16; 2]>(), 1..10),
             start in any::<[u16; 2]>(),
             refp in prop::collection::vec((0i32..40, 0i32..40), 3..10),
-            grid in prop::sample::select(vec![1.0, 64.0, 1000.0]),
+            grid in prop::sample::select(vec![1.0, 4.0, 64.0, 1000.0]),
             off in prop::sample::select(vec![2.0, 41.0]),
             scale in prop::sample::select(vec![12.0, 40.0, 300.0]),
+            clipped in any::<bool>(),
             cut in any::<[u8; 4]>(),
         ) {
             let lines: Vec<(u8, [u16; 6])> = path.iter().map(|&[x, y]| (0, [x, y, 0, 0, 0, 0])).collect();
             let (start, commands, reference) = random_path(&lines, start, &refp, grid, off, scale);
             let round = Window::round(&reference, start, &commands);
-            // Each side moved in by up to half the window.
+            // Plain: the round window less its two spare pixels, whose sides touch the path
+            // or the reference. Clipped: each side moved in by up to half the window.
             let (w, h) = (round.x1 - round.x0, round.y1 - round.y0);
-            let part = |c: u8, of: i64| i64::from(c) * of / 512;
+            let inset = |c: u8, of: i64| if clipped { i64::from(c) * of / 512 } else { 2 };
             let win = Window {
-                x0: round.x0 + part(cut[0], w),
-                y0: round.y0 + part(cut[1], h),
-                x1: round.x1 - part(cut[2], w),
-                y1: round.y1 - part(cut[3], h),
+                x0: round.x0 + inset(cut[0], w),
+                y0: round.y0 + inset(cut[1], h),
+                x1: round.x1 - inset(cut[2], w),
+                y1: round.y1 - inset(cut[3], h),
             };
             prop_assume!(win.x0 < win.x1 && win.y0 < win.y1);
-            let ours = painted(&reference, start, &commands, &win, true).expect("lines");
-            prop_assert_eq!(ours, tiny_skia_indices(&reference, start, &commands, &win, true));
+            let ours = painted(&reference, start, &commands, &win, clipped).expect("lines");
+            prop_assert_eq!(ours, tiny_skia_indices(&reference, start, &commands, &win, clipped));
         }
     }
 
