@@ -452,23 +452,27 @@ pub(crate) fn decompose_reporting(
             || Recognizer::new(basis.clone(), &[0, 0]),
             |rec, chunk| match rec.as_mut() {
                 Some(rec) => {
-                    let worker = rayon::current_thread_index().unwrap_or(0) % greedy_memos.len();
-                    // (Each worker locks its own: no waiting. A memo whose holder panicked
-                    // holds pieces as exact as any.)
-                    let mut greedy = greedy_memos[worker]
-                        .lock()
-                        .unwrap_or_else(std::sync::PoisonError::into_inner);
                     let before = rec.stats();
                     // Tiny contours repeat (noise, halftones): each shape once per task (per
                     // worker instead: no fewer instructions on noise).
                     let mut memo = shapes::PieceMemo::default();
-                    let pieces = chunk
-                        .iter()
-                        .map(|&k| {
-                            let c = &contours[k];
-                            memo.pieces(c, wraps(c), rec, |rec| one(c, rec, &mut greedy))
-                        })
-                        .collect();
+                    let pieces = {
+                        // Each worker locks its own, and nothing here runs rayon jobs: no
+                        // waiting. (A memo whose holder panicked holds pieces as exact as
+                        // any.) Released before `done`, which is the caller's.
+                        let worker =
+                            rayon::current_thread_index().unwrap_or(0) % greedy_memos.len();
+                        let mut greedy = greedy_memos[worker]
+                            .lock()
+                            .unwrap_or_else(std::sync::PoisonError::into_inner);
+                        chunk
+                            .iter()
+                            .map(|&k| {
+                                let c = &contours[k];
+                                memo.pieces(c, wraps(c), rec, |rec| one(c, rec, &mut greedy))
+                            })
+                            .collect()
+                    };
                     let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
                     done(n);
                     let mut stats = &rec.stats() - &before;
