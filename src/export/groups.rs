@@ -105,7 +105,7 @@ fn sort_by_rows(entries: &mut Vec<(i32, i32, u32)>) {
     ) else {
         return;
     };
-    let rows = (i64::from(hi) - i64::from(lo) + 1) as usize;
+    let rows = usize::try_from(i64::from(hi) - i64::from(lo) + 1).unwrap_or(usize::MAX);
     if entries.len() < 1024 || rows > entries.len() {
         entries.sort_unstable();
         return;

@@ -123,6 +123,11 @@ fn scanned(
     })
 }
 
+/// Farthest a point of a path of lines drawn clipped may lie from the window's corner (px)
+/// for the scan to clip it: far from where tiny-skia gives up (bounds spanning about 2^31
+/// px).
+const MAX_CLIPPED: f64 = 1e9;
+
 /// Most crossings whose buffers [`SCRATCH`] keeps: a huge contour's would hold their
 /// memory to the end of the run.
 const MAX_KEPT: usize = 1 << 16;
@@ -199,8 +204,9 @@ fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
     let margin = if has_curves(commands) { 1.0 } else { 0.0 };
     let inside = |x: f64, y: f64| {
         if CLIP_LINES {
-            // (Finite in `f32`: tiny-skia refuses other paths.)
-            (x as f32).is_finite() && (y as f32).is_finite()
+            // (Far within `f32`'s range: tiny-skia fills nothing where the path's bounds in
+            // whole pixels overflow `i32`, or its coordinates are near `f32::MAX`.)
+            x.abs() <= MAX_CLIPPED && y.abs() <= MAX_CLIPPED
         } else {
             x >= margin && y >= margin && x <= wf - margin && y <= hf - margin
         }
@@ -589,6 +595,34 @@ mod tests {
         assert!(painted_moved(&reference, start, &on, &win, false, 1.0 / 64.0, false).is_some());
         // A shift off the grid moves edges by what 16.16 does not hold.
         assert!(painted_moved(&reference, start, &on, &win, false, 0.01, false).is_none());
+    }
+
+    #[test]
+    fn lines_too_far_for_tiny_skia_are_left_to_it() {
+        let start = Point::new(5.0, 5.0);
+        let reference = Reference::new(start, &[PathCommand::Line(Point::new(6.0, 5.0))]);
+        let win = Window {
+            x0: 0,
+            y0: 0,
+            x1: 20,
+            y1: 20,
+        };
+        let path = |far: f64| {
+            [
+                PathCommand::Line(Point::new(-far, 12.0)),
+                PathCommand::Line(Point::new(15.0, 18.0)),
+            ]
+        };
+        // Clipped as tiny-skia clips it, a million pixels away; left to tiny-skia (which
+        // fills nothing) three billion away.
+        let near = path(1e6);
+        let ours = painted(&reference, start, &near, &win, true).expect("clipped here");
+        assert!(!ours.is_empty());
+        assert_eq!(
+            ours,
+            tiny_skia_indices(&reference, start, &near, &win, true)
+        );
+        assert!(painted(&reference, start, &path(3e9), &win, true).is_none());
     }
 
     #[test]

@@ -195,7 +195,7 @@ impl<'a> Stretcher<'a> {
         let xy = |p: Pixel| [i64::from(p.x), i64::from(p.y)];
         // (Segments of two points or more, mostly: a stretch is some 500 bytes, and growing
         // the vector copied them, 0.5% of 1000² noise's instructions.)
-        let mut out = Vec::with_capacity(((last + 2 - first) / 2).min(32));
+        let mut out = Vec::with_capacity(((last + 2).saturating_sub(first) / 2).min(32));
         let mut i = first;
         let [mut in_piece, mut high, mut low] = std::mem::take(&mut self.scratch);
         let [mut low_list, mut high_list] = std::mem::take(&mut self.sides);
