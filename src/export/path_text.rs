@@ -102,6 +102,19 @@ pub(crate) fn write_path_data(cp: &ContourPath, precision: usize, shift: f64, s:
     if cp.commands.is_empty() {
         return;
     }
+    // Room for the usual lengths at once (grown number by number, a contour's text was
+    // reallocated some five times).
+    let room: usize = cp
+        .commands
+        .iter()
+        .map(|c| match c {
+            PathCommand::Line(_) => 10,
+            PathCommand::Quad(..) => 24,
+            PathCommand::Cubic(..) => 36,
+            PathCommand::Arc(_) => 48,
+        })
+        .sum();
+    s.reserve(room + 12);
     let moved = |p: Point| Point::new(p.x - shift, p.y - shift);
     s.push('M');
     point(moved(cp.start), precision, s);
