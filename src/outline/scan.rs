@@ -583,10 +583,26 @@ mod tests {
         }
     }
 
-    #[test]
-    fn moved_fills_need_a_shift_on_the_grid() {
+    /// A path's start at (5, 5) and a reference of one crack from it.
+    fn one_crack() -> (Point, Reference) {
         let start = Point::new(5.0, 5.0);
         let reference = Reference::new(start, &[PathCommand::Line(Point::new(6.0, 5.0))]);
+        (start, reference)
+    }
+
+    /// The window of `side` × `side` pixels at the origin.
+    fn square(side: i64) -> Window {
+        Window {
+            x0: 0,
+            y0: 0,
+            x1: side,
+            y1: side,
+        }
+    }
+
+    #[test]
+    fn moved_fills_need_a_shift_on_the_grid() {
+        let (start, reference) = one_crack();
         let on = [
             PathCommand::Line(Point::new(6.0, 6.5)),
             PathCommand::Line(Point::new(5.0, 6.0)),
@@ -599,14 +615,8 @@ mod tests {
 
     #[test]
     fn lines_too_far_for_tiny_skia_are_left_to_it() {
-        let start = Point::new(5.0, 5.0);
-        let reference = Reference::new(start, &[PathCommand::Line(Point::new(6.0, 5.0))]);
-        let win = Window {
-            x0: 0,
-            y0: 0,
-            x1: 20,
-            y1: 20,
-        };
+        let (start, reference) = one_crack();
+        let win = square(20);
         let path = |far: f64| {
             [
                 PathCommand::Line(Point::new(-far, 12.0)),
@@ -627,14 +637,8 @@ mod tests {
 
     #[test]
     fn paths_tiny_skia_would_clip_are_left_to_it() {
-        let start = Point::new(5.0, 5.0);
-        let reference = Reference::new(start, &[PathCommand::Line(Point::new(6.0, 5.0))]);
-        let win = Window {
-            x0: 0,
-            y0: 0,
-            x1: 10,
-            y1: 10,
-        };
+        let (start, reference) = one_crack();
+        let win = square(10);
         let inside = [PathCommand::Cubic(
             Point::new(6.0, 6.0),
             Point::new(2.0, 8.0),
