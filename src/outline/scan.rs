@@ -99,10 +99,12 @@ fn scanned(
     SCRATCH.with(|cell| {
         let mut scratch = cell.take();
         let (d, first_only) = shift.unwrap_or((0.0, false));
+        let curves = has_curves(commands);
         let scan = Scan {
             reference,
             start,
             commands,
+            curves,
             win,
             clipped,
             shift: d,
@@ -112,7 +114,7 @@ fn scanned(
         // edge (`mask_fill`'s sliver puts the path's bounds outside the mask), so the path
         // may leave the window, each line clipped as tiny-skia clips it.
         let painted = match shift {
-            None if clipped && !has_curves(commands) => painted_with::<1, true>(&mut scratch, scan),
+            None if clipped && !curves => painted_with::<1, true>(&mut scratch, scan),
             None => painted_with::<1, false>(&mut scratch, scan),
             Some(_) => painted_with::<3, false>(&mut scratch, scan),
         };
@@ -158,6 +160,8 @@ struct Scan<'a> {
     reference: &'a Reference,
     start: Point,
     commands: &'a [PathCommand],
+    /// Whether `commands` has curves.
+    curves: bool,
     win: &'a Window,
     /// Curves drawn the clipped way.
     clipped: bool,
@@ -182,6 +186,7 @@ fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
         reference,
         start,
         commands,
+        curves,
         win,
         clipped,
         shift,
@@ -201,7 +206,7 @@ fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
     let d = [0.0, f64::from(k64) / 64.0, -f64::from(k64) / 64.0];
     let offsets = [0, k64 << 10, -(k64 << 10)];
     // As `difference_path` hands the points to tiny-skia (a moved path is moved first).
-    let margin = if has_curves(commands) { 1.0 } else { 0.0 };
+    let margin = if curves { 1.0 } else { 0.0 };
     let inside = |x: f64, y: f64| {
         if CLIP_LINES {
             // (Far within `f32`'s range: tiny-skia fills nothing where the path's bounds in
