@@ -69,6 +69,114 @@ pub struct PolynomialBasis {
     /// Each function is a sum of `(coefficient, exponent per coordinate)`.
     functions: Vec<Terms>,
     names: Vec<String>,
+    /// The functions' terms `c·xⁱ·yʲ` one after the other, when the points are planar:
+    /// lifted without walking the terms' vectors.
+    planar: Option<Planar>,
+}
+
+/// The terms of a planar [`PolynomialBasis`], and which model's they are.
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Planar {
+    terms: Vec<PlanarTerm>,
+    /// The line's, circle's or conic's functions, lifted by their formulas.
+    known: Option<Model>,
+}
+
+/// One term `c·xⁱ·yʲ` of a planar [`PolynomialBasis`]'s function; `last` for its function's
+/// last term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct PlanarTerm {
+    c: i64,
+    i: u32,
+    j: u32,
+    last: bool,
+}
+
+impl Planar {
+    /// The terms of `functions`, whose exponent vectors have two entries.
+    fn new(functions: &[Terms]) -> Planar {
+        let terms: Vec<PlanarTerm> = functions
+            .iter()
+            .flat_map(|f| {
+                f.iter().enumerate().map(|(k, (c, e))| PlanarTerm {
+                    c: *c,
+                    i: e[0],
+                    j: e[1],
+                    last: k + 1 == f.len(),
+                })
+            })
+            .collect();
+        let term = |c, i, j, last| PlanarTerm { c, i, j, last };
+        let known = [Model::Line, Model::Circle, Model::Conic]
+            .into_iter()
+            .find(|m| {
+                let expected: &[PlanarTerm] = match m {
+                    Model::Line => &[term(1, 1, 0, true), term(1, 0, 1, true)],
+                    Model::Circle => &[
+                        term(1, 2, 0, false),
+                        term(1, 0, 2, true),
+                        term(1, 1, 0, true),
+                        term(1, 0, 1, true),
+                    ],
+                    _ => &[
+                        term(1, 2, 0, true),
+                        term(1, 1, 1, true),
+                        term(1, 0, 2, true),
+                        term(1, 1, 0, true),
+                        term(1, 0, 1, true),
+                    ],
+                };
+                terms == expected
+            });
+        Planar { terms, known }
+    }
+
+    /// [`Basis::lift`] of `(x, y)` into `out` (at least one entry per function).
+    #[inline]
+    fn lift(&self, x: i64, y: i64, out: &mut [i64]) -> Option<()> {
+        // The known models' formulas, checked as `lift_terms` checks them (`1·x` first, then
+        // each factor, then the sum): the same values and the same overflows.
+        match (self.known, &mut *out) {
+            (Some(Model::Line), [fx, fy, ..]) => {
+                (*fx, *fy) = (x, y);
+                return Some(());
+            }
+            (Some(Model::Circle), [r, fx, fy, ..]) => {
+                *r = x.checked_mul(x)?.checked_add(y.checked_mul(y)?)?;
+                (*fx, *fy) = (x, y);
+                return Some(());
+            }
+            (Some(Model::Conic), [xx, xy, yy, fx, fy, ..]) => {
+                *xx = x.checked_mul(x)?;
+                *xy = x.checked_mul(y)?;
+                *yy = y.checked_mul(y)?;
+                (*fx, *fy) = (x, y);
+                return Some(());
+            }
+            _ => {}
+        }
+        // The same sums of the same products in the same order as `lift_terms`, so the
+        // same overflows.
+        let mut outs = out.iter_mut();
+        let mut sum: i64 = 0;
+        for t in &self.terms {
+            let mut term = t.c;
+            for _ in 0..t.i {
+                term = term.checked_mul(x)?;
+            }
+            for _ in 0..t.j {
+                term = term.checked_mul(y)?;
+            }
+            sum = sum.checked_add(term)?;
+            if t.last {
+                if let Some(o) = outs.next() {
+                    *o = sum;
+                }
+                sum = 0;
+            }
+        }
+        Some(())
+    }
 }
 
 impl PolynomialBasis {
@@ -97,10 +205,12 @@ impl PolynomialBasis {
         }
         let mut names = names;
         names.push("1".to_string());
+        let planar = (point_dim == 2).then(|| Planar::new(&functions));
         Some(PolynomialBasis {
             point_dim,
             functions,
             names,
+            planar,
         })
     }
 
@@ -160,6 +270,25 @@ fn monomial_name(vars: &[&str], exponents: &[u32]) -> String {
     }
 }
 
+/// [`Basis::lift`] by the functions' terms: each term's product in exact integers, checked
+/// at every factor.
+fn lift_terms(functions: &[Terms], p: &[i64], out: &mut [i64]) -> Option<()> {
+    for (f, o) in functions.iter().zip(out.iter_mut()) {
+        let mut sum: i64 = 0;
+        for (c, e) in f {
+            let mut term = *c;
+            for (&x, &k) in p.iter().zip(e) {
+                for _ in 0..k {
+                    term = term.checked_mul(x)?;
+                }
+            }
+            sum = sum.checked_add(term)?;
+        }
+        *o = sum;
+    }
+    Some(())
+}
+
 impl Basis for PolynomialBasis {
     fn point_dim(&self) -> usize {
         self.point_dim
@@ -170,20 +299,11 @@ impl Basis for PolynomialBasis {
     }
 
     fn lift(&self, p: &[i64], out: &mut [i64]) -> Option<()> {
-        for (f, o) in self.functions.iter().zip(out.iter_mut()) {
-            let mut sum: i64 = 0;
-            for (c, e) in f {
-                let mut term = *c;
-                for (&x, &k) in p.iter().zip(e) {
-                    for _ in 0..k {
-                        term = term.checked_mul(x)?;
-                    }
-                }
-                sum = sum.checked_add(term)?;
-            }
-            *o = sum;
+        if let (Some(planar), &[x, y], true) = (&self.planar, p, out.len() >= self.functions.len())
+        {
+            return planar.lift(x, y, out);
         }
-        Some(())
+        lift_terms(&self.functions, p, out)
     }
 
     fn names(&self) -> Vec<String> {
@@ -431,6 +551,53 @@ mod tests {
         assert_eq!(out[4], 81);
         assert_eq!(*out.last().unwrap(), 3);
         assert!(c.lift(&[1 << 20, 1 << 20], &mut out).is_none());
+    }
+
+    #[test]
+    fn planar_liftings_are_those_of_the_terms() {
+        // Every planar model, at coordinates small, large and near the overflows of each
+        // degree: the monomials' lifting gives the terms' values and the same overflows.
+        let coords = [
+            0i64,
+            1,
+            -1,
+            7,
+            -300,
+            46_341,
+            -3_037_000_500,
+            3_037_000_499,
+            2_147_483_647,
+            2_097_152,
+            1 << 31,
+            i64::MAX,
+            i64::MIN,
+        ];
+        for model in [
+            Model::Line,
+            Model::Circle,
+            Model::Conic,
+            Model::Poly(3),
+            Model::Poly(6),
+        ] {
+            let b = model.basis();
+            let planar = b.planar.as_ref().expect("planar terms");
+            assert_eq!(
+                planar.known.is_some(),
+                matches!(model, Model::Line | Model::Circle | Model::Conic),
+                "{model}"
+            );
+            let (mut fast, mut slow) = (vec![0; b.dim()], vec![0; b.dim()]);
+            for &x in &coords {
+                for &y in &coords {
+                    let f = b.lift(&[x, y], &mut fast);
+                    let s = lift_terms(&b.functions, &[x, y], &mut slow);
+                    assert_eq!(f, s, "{model} at ({x}, {y})");
+                    if f.is_some() {
+                        assert_eq!(fast, slow, "{model} at ({x}, {y})");
+                    }
+                }
+            }
+        }
     }
 
     #[test]
