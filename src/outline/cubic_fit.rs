@@ -56,21 +56,27 @@ pub(super) struct Fit {
     along: ([[f64; 4]; 4], [f64; 4]),
     /// Each sample's terms of its rows that do not depend on its parameter.
     scaled: Vec<Scaled>,
-    rows: Vec<Row>,
+    /// The rows across the run, one or two per sample (see [`Scaled::row`]).
+    rows: Vec<Across>,
     weights: Vec<f64>,
     residuals: Vec<f64>,
 }
+
+/// A row across the run, `c₁ (n · P1) + c₂ (n · P2) = r` with its sample's `n` (over its
+/// tolerance): `[c₁, c₂, r]`.
+type Across = [f64; 3];
 
 /// The row asking `n · (C − t) = 0` within `tol`, where `C = c₀ A + c₁ P1 + c₂ P2 + c₃ E`.
 fn row(a: Point, e: Point, c: [f64; 4], n: Vec2, t: Point, tol: f64) -> Row {
     Scaled::new(a, e, n, t, tol).row(c)
 }
 
-/// The terms of a row of [`row`] that do not depend on the weights `c`: `n / tol`, and
-/// `n · t`, `n · A`, `n · E` over `tol`.
+/// The terms of a row of [`row`] that do not depend on the weights `c`: `n / tol`, its
+/// products `nₓ², nₓ n_y, n_y²`, and `n · t`, `n · A`, `n · E` over `tol`.
 #[derive(Clone, Copy)]
 struct Scaled {
     n: Vec2,
+    nn: [f64; 3],
     t: f64,
     a: f64,
     e: f64,
@@ -79,8 +85,10 @@ struct Scaled {
 impl Scaled {
     fn new(a: Point, e: Point, n: Vec2, t: Point, tol: f64) -> Scaled {
         let inv = 1.0 / tol;
+        let ns = n * inv;
         Scaled {
-            n: n * inv,
+            n: ns,
+            nn: [ns.x * ns.x, ns.x * ns.y, ns.y * ns.y],
             t: n.dot(t.to_vec2()) * inv,
             a: n.dot(a.to_vec2()) * inv,
             e: n.dot(e.to_vec2()) * inv,
@@ -92,8 +100,14 @@ impl Scaled {
         let n = self.n;
         (
             [c[1] * n.x, c[1] * n.y, c[2] * n.x, c[2] * n.y],
-            self.t - c[0] * self.a - c[3] * self.e,
+            self.across(c)[2],
         )
+    }
+
+    /// The row with the weights `c` of `A, P1, P2, E`, as an [`Across`].
+    #[inline]
+    fn across(&self, c: [f64; 4]) -> Across {
+        [c[1], c[2], self.t - c[0] * self.a - c[3] * self.e]
     }
 }
 
@@ -137,9 +151,9 @@ impl Fit {
         let rows = &mut self.rows;
         rows.clear();
         for (s, k) in samples.iter().zip(&self.scaled) {
-            rows.push(k.row(bernstein(s.u)));
+            rows.push(k.across(bernstein(s.u)));
             if chords > 0 {
-                rows.push(k.row(chord_weights(s.u, chords)));
+                rows.push(k.across(chord_weights(s.u, chords)));
             }
         }
         let m = rows.len();
@@ -152,9 +166,25 @@ impl Fit {
         let (lhs0, rhs0) = self.along;
         let mut best: Option<([f64; 4], f64)> = None;
         for round in 0..rounds {
+            let Sums { blocks, sides } = if chords > 0 {
+                sums::<2>(rows, w, &self.scaled)
+            } else {
+                sums::<1>(rows, w, &self.scaled)
+            };
             let (mut lhs, mut rhs) = (lhs0, rhs0);
-            for (r, &wi) in rows.iter().zip(w.iter()) {
-                add_row(&mut lhs, &mut rhs, r, wi);
+            let [b11, b12, b22] = blocks;
+            lhs[0][0] += b11[0];
+            lhs[0][1] += b11[1];
+            lhs[1][1] += b11[2];
+            lhs[0][2] += b12[0];
+            lhs[0][3] += b12[1];
+            lhs[1][2] += b12[1];
+            lhs[1][3] += b12[2];
+            lhs[2][2] += b22[0];
+            lhs[2][3] += b22[1];
+            lhs[3][3] += b22[2];
+            for (r, s) in rhs.iter_mut().zip(sides) {
+                *r += s;
             }
             for i in 0..4 {
                 for k in 0..i {
@@ -162,17 +192,11 @@ impl Fit {
                 }
             }
             let p = solve4(lhs, rhs)?;
-            let mut worst = 0.0f64;
-            let mut total = 0.0;
-            for ((c, r), (ri, wi)) in rows.iter().zip(res.iter_mut().zip(w.iter())) {
-                *ri = (c[0] * p[0] + c[1] * p[1] + c[2] * p[2] + c[3] * p[3] - r).abs();
-                // (Not `max`, whose NaN handling lengthens the loop's dependency chain;
-                // a NaN is skipped either way.)
-                if *ri > worst {
-                    worst = *ri;
-                }
-                total += wi * *ri;
-            }
+            let Residuals { worst, total } = if chords > 0 {
+                residuals::<2>(rows, w, res, &self.scaled, p)
+            } else {
+                residuals::<1>(rows, w, res, &self.scaled, p)
+            };
             if best.is_none_or(|(_, b)| worst < b) {
                 best = Some((p, worst));
             }
@@ -188,6 +212,81 @@ impl Fit {
         let (p, worst) = best?;
         Some(([Point::new(p[0], p[1]), Point::new(p[2], p[3])], worst))
     }
+}
+
+/// The weighted sums of a round of [`Fit::fit`] over the rows across the run: with
+/// `c = (c₁ nₓ, c₁ n_y, c₂ nₓ, c₂ n_y)`, `Σ w c cᵀ` has the blocks `Σ w cᵢ cₖ n nᵀ`
+/// (`blocks`: `(i, k)` = (1, 1), (1, 2), (2, 2), each as `n nᵀ`'s `xx, xy, yy`), and
+/// `Σ w c r` is `sides`.
+struct Sums {
+    blocks: [[f64; 3]; 3],
+    sides: [f64; 4],
+}
+
+/// [`Sums`] of `rows` weighted by `w`, `PER` rows per sample of `scaled` (they share its
+/// normal).
+fn sums<const PER: usize>(rows: &[Across], w: &[f64], scaled: &[Scaled]) -> Sums {
+    let mut blocks = [[0.0f64; 3]; 3];
+    let mut sides = [0.0f64; 4];
+    for ((pair, ws), k) in rows.chunks_exact(PER).zip(w.chunks_exact(PER)).zip(scaled) {
+        let (mut s11, mut s12, mut s22, mut r1, mut r2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for i in 0..PER {
+            let (row, wi) = (pair[i], ws[i]);
+            let (p, q) = (wi * row[0], wi * row[1]);
+            s11 += p * row[0];
+            s12 += p * row[1];
+            s22 += q * row[1];
+            r1 += p * row[2];
+            r2 += q * row[2];
+        }
+        for (block, s) in blocks.iter_mut().zip([s11, s12, s22]) {
+            for (b, nn) in block.iter_mut().zip(k.nn) {
+                *b += s * nn;
+            }
+        }
+        sides[0] += r1 * k.n.x;
+        sides[1] += r1 * k.n.y;
+        sides[2] += r2 * k.n.x;
+        sides[3] += r2 * k.n.y;
+    }
+    Sums { blocks, sides }
+}
+
+/// The largest residual of a round of [`Fit::fit`] and the sum of the weighted ones.
+struct Residuals {
+    worst: f64,
+    total: f64,
+}
+
+/// The residuals `|c₁ (n · P1) + c₂ (n · P2) − r|` of `rows` at the control points `p`
+/// into `res`, `PER` rows per sample of `scaled`.
+fn residuals<const PER: usize>(
+    rows: &[Across],
+    w: &[f64],
+    res: &mut [f64],
+    scaled: &[Scaled],
+    p: [f64; 4],
+) -> Residuals {
+    let mut worst = 0.0f64;
+    let mut total = 0.0;
+    for ((pair, (rs, ws)), k) in rows
+        .chunks_exact(PER)
+        .zip(res.chunks_exact_mut(PER).zip(w.chunks_exact(PER)))
+        .zip(scaled)
+    {
+        let (n1, n2) = (k.n.x * p[0] + k.n.y * p[1], k.n.x * p[2] + k.n.y * p[3]);
+        for i in 0..PER {
+            let row = pair[i];
+            rs[i] = (row[0] * n1 + row[1] * n2 - row[2]).abs();
+            // (Not `max`, whose NaN handling lengthens the loop's dependency chain; a NaN
+            // is skipped either way.)
+            if rs[i] > worst {
+                worst = rs[i];
+            }
+            total += ws[i] * rs[i];
+        }
+    }
+    Residuals { worst, total }
 }
 
 /// Tolerance (px) of the rows along the run in [`Fit`].
