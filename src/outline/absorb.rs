@@ -171,27 +171,26 @@ fn fitted_cubic(
     // The cracks' middles, at their fraction of the run's length; the contour's direction
     // there from four cracks before to four after.
     let last = target.len() - 1;
-    let mut samples: Vec<Sample> = (1..last)
-        .filter_map(|k| {
-            let p = target[k];
-            let along = target[(k + 4).min(last)] - target[k.saturating_sub(4)];
-            let along = along / along.hypot().max(1e-9);
-            // The segment between the pixel centres beside the crack.
-            let across = if (p.y - p.y.round()).abs() < 1e-9 {
-                Vec2::new(0.0, 1.0)
-            } else {
-                Vec2::new(1.0, 0.0)
-            };
-            let tol = 0.5 * along.cross(across).abs();
-            (tol >= MIN_TOLERANCE).then_some(Sample {
-                u: lengths[k - 1] / total,
-                u0: lengths[k - 1] / total,
-                t: p,
-                normal: Vec2::new(-along.y, along.x),
-                tol,
-            })
+    let mut samples: Vec<Sample> = Vec::with_capacity(last);
+    samples.extend((1..last).filter_map(|k| {
+        let p = target[k];
+        let along = target[(k + 4).min(last)] - target[k.saturating_sub(4)];
+        let along = along / along.hypot().max(1e-9);
+        // The segment between the pixel centres beside the crack.
+        let across = if (p.y - p.y.round()).abs() < 1e-9 {
+            Vec2::new(0.0, 1.0)
+        } else {
+            Vec2::new(1.0, 0.0)
+        };
+        let tol = 0.5 * along.cross(across).abs();
+        (tol >= MIN_TOLERANCE).then_some(Sample {
+            u: lengths[k - 1] / total,
+            u0: lengths[k - 1] / total,
+            t: p,
+            normal: Vec2::new(-along.y, along.x),
+            tol,
         })
-        .collect();
+    }));
     // First the curve alone, by plain least squares: a start for the chord count.
     let mut fits = Fit::new(a, e, &samples);
     let (mut control, first) = fits.fit(&samples, 0, 1)?;

@@ -184,13 +184,15 @@ fn planar_margin<P: AsRef<[i64]>>(
     low: &[P],
     high: &[P],
 ) -> Option<MarginDirection> {
+    // (A loop into a vector of the set's length: collected into an `Option`, the vector
+    // grew by reallocation.)
     let rel = |set: &[P]| -> Option<Vec<[i64; 2]>> {
-        set.iter()
-            .map(|p| {
-                let p = p.as_ref();
-                Some([p[0].checked_sub(origin[0])?, p[1].checked_sub(origin[1])?])
-            })
-            .collect()
+        let mut out = Vec::with_capacity(set.len());
+        for p in set {
+            let p = p.as_ref();
+            out.push([p[0].checked_sub(origin[0])?, p[1].checked_sub(origin[1])?]);
+        }
+        Some(out)
     };
     line_margin_direction(&rel(low)?, &rel(high)?)
 }
