@@ -61,9 +61,31 @@ impl LiftedSet {
     pub fn push(&mut self, point: &[i64], lifted: &[i64]) {
         debug_assert_eq!(point.len(), self.point_dim);
         debug_assert_eq!(lifted.len(), self.dim);
-        self.points.extend_from_slice(point);
-        self.lifted.extend_from_slice(lifted);
-        self.float.extend(lifted.iter().map(|&v| v as f64));
+        // The planar models' sizes copied as arrays: slices of unknown length are copied
+        // by calls to `memcpy`, which cost more than the copies themselves.
+        match (point.len(), lifted.len()) {
+            (2, 2) => self.push_sized::<2, 2>(point, lifted),
+            (2, 3) => self.push_sized::<2, 3>(point, lifted),
+            (2, 5) => self.push_sized::<2, 5>(point, lifted),
+            (2, 9) => self.push_sized::<2, 9>(point, lifted),
+            _ => {
+                self.points.extend_from_slice(point);
+                self.lifted.extend_from_slice(lifted);
+                self.float.extend(lifted.iter().map(|&v| v as f64));
+            }
+        }
+    }
+
+    /// [`LiftedSet::push`] of a point of `P` coordinates lifted to `N`.
+    #[inline]
+    fn push_sized<const P: usize, const N: usize>(&mut self, point: &[i64], lifted: &[i64]) {
+        let (Ok(point), Ok(lifted)) = (<[i64; P]>::try_from(point), <[i64; N]>::try_from(lifted))
+        else {
+            return;
+        };
+        self.points.extend_from_slice(&point);
+        self.lifted.extend_from_slice(&lifted);
+        self.float.extend_from_slice(&lifted.map(|v| v as f64));
     }
 
     /// The index of a point equal to `point`, if any.
