@@ -18,7 +18,7 @@ use crate::curve::{CurveKind, Polynomial, MAX_DEGREE};
 use crate::decompose::{piece_outliers, OutlierRule, Outliers, Piece};
 use crate::model::Basis;
 use crate::pixel::Pixel;
-use crate::recognize::{max_margin_direction, Certificate};
+use crate::recognize::{max_margin_direction_from, Certificate};
 use kurbo::Point;
 
 /// The level `c` of the border curve: the middle of the gap between the layer and its RIGHT
@@ -140,7 +140,14 @@ pub fn border_polynomial(
     low.extend(left.iter().map(xy));
     let high: Vec<[i64; 2]> = right.iter().map(xy).collect();
     let origin = &piece.certificate.origin;
-    let poly = match max_margin_direction(basis, origin, &low, &high, true) {
+    let poly = match max_margin_direction_from(
+        basis,
+        origin,
+        &low,
+        &high,
+        true,
+        Some(&piece.certificate.coefficients),
+    ) {
         Some(m) => polynomial_of(basis, origin, &m.direction, m.level),
         None => level_polynomial(
             basis,

@@ -52,7 +52,11 @@ const MARGIN_GAP: f64 = 1e-3;
 /// The float GJK run to convergence in coordinates scaled by `scale`: the direction of
 /// largest margin, unscaled (or, when the run stalls, its last separating direction). `None`
 /// if the sets are not (numerically) separated.
-fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
+fn largest_margin_direction(
+    sets: Sets<'_>,
+    scale: &[f64],
+    hint: Option<&[i64]>,
+) -> Option<Vec<f64>> {
     let map = LinearMap::diagonal(scale);
     let mut support = FloatSupport {
         sets,
@@ -60,6 +64,13 @@ fn largest_margin_direction(sets: Sets<'_>, scale: &[f64]) -> Option<Vec<f64>> {
         y: Vec::with_capacity(scale.len()),
     };
     let mut simplex = Simplex::default();
+    if let Some(a) = hint.filter(|a| a.len() == scale.len() && a.iter().any(|&v| v != 0)) {
+        // a·F = Σ (aᵢ / sᵢ)(sᵢ Fᵢ): the hint's direction in the scaled coordinates.
+        let d: Vec<f64> = a.iter().zip(scale).map(|(&v, s)| v as f64 / s).collect();
+        if let Some(v) = support.support_point(&d, Vec::new()) {
+            simplex.reset_to(v);
+        }
+    }
     let params = GjkParams {
         first_separation: false,
         gap: MARGIN_GAP,
@@ -125,6 +136,19 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
     high: &[P],
     scaled: bool,
 ) -> Option<MarginDirection> {
+    max_margin_direction_from(basis, origin, low, high, scaled, None)
+}
+
+/// [`max_margin_direction`] started from the pair of points tightest along `hint`, a
+/// separating direction (coefficients of the basis functions), when given.
+pub(crate) fn max_margin_direction_from<P: AsRef<[i64]>>(
+    basis: &dyn Basis,
+    origin: &[i64],
+    low: &[P],
+    high: &[P],
+    scaled: bool,
+    hint: Option<&[i64]>,
+) -> Option<MarginDirection> {
     let (pd, n) = (basis.point_dim(), basis.dim());
     if low.is_empty()
         || high.is_empty()
@@ -150,7 +174,7 @@ pub fn max_margin_direction<P: AsRef<[i64]>>(
         upper: &high_set,
         lower: &empty,
     };
-    let y = largest_margin_direction(sets, &scale)?;
+    let y = largest_margin_direction(sets, &scale, hint)?;
     let value = |row: &[f64]| row.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>();
     let top = low_set
         .float_rows()
@@ -227,7 +251,7 @@ pub fn small_certificate(
         upper: &u,
         lower: &l,
     };
-    let Some(y) = largest_margin_direction(sets, &power_of_two_scale(&max_abs)) else {
+    let Some(y) = largest_margin_direction(sets, &power_of_two_scale(&max_abs), None) else {
         return fallback;
     };
     let ymax = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -267,6 +291,58 @@ pub fn small_certificate(
 mod tests {
     use super::*;
     use crate::model::{Model, PolynomialBasis};
+
+    #[test]
+    fn a_start_from_a_hint_finds_the_same_margin() {
+        // The pixels inside a circle of radius r along an arc, and those outside beside
+        // them, conic basis: started from the circle's own coefficients, from a direction
+        // that separates nothing, or from nowhere, the run finds the same margin (within
+        // twice the gap at which it stops).
+        let basis = Model::Conic.basis();
+        for r in [5i64, 12, 31, 80] {
+            let (mut low, mut high) = (Vec::new(), Vec::new());
+            for x in 0..=r + 2 {
+                for y in 0..=r / 2 {
+                    let d = x * x + y * y;
+                    if d <= r * r && d > (r - 2) * (r - 2) {
+                        low.push([x, y]);
+                    } else if d > r * r && d <= (r + 2) * (r + 2) {
+                        high.push([x, y]);
+                    }
+                }
+            }
+            let mut max_abs = vec![0i64; basis.dim()];
+            let (lo, hi) = (
+                lift_points(&basis, &[0, 0], &low, &mut max_abs).expect("lifted"),
+                lift_points(&basis, &[0, 0], &high, &mut max_abs).expect("lifted"),
+            );
+            let scale = power_of_two_scale(&max_abs);
+            let margin = |m: &MarginDirection| {
+                let value = |row: &[f64]| row.iter().zip(&m.direction).map(|(a, b)| a * b).sum();
+                let top = lo.float_rows().map(value).fold(f64::NEG_INFINITY, f64::max);
+                let bottom = hi.float_rows().map(value).fold(f64::INFINITY, f64::min);
+                let norm: f64 = m
+                    .direction
+                    .iter()
+                    .zip(&scale)
+                    .map(|(d, s)| (d / s).powi(2))
+                    .sum();
+                (bottom - top) / norm.sqrt()
+            };
+            let plain = max_margin_direction(&basis, &[0, 0], &low, &high, true).expect("margin");
+            for hint in [[1i64, 0, 1, 0, 0], [0, 0, 0, 1, 0]] {
+                let from =
+                    max_margin_direction_from(&basis, &[0, 0], &low, &high, true, Some(&hint))
+                        .expect("margin");
+                let (a, b) = (margin(&plain), margin(&from));
+                assert!(a > 0.0 && b > 0.0, "r {r}: {a}, {b}");
+                assert!(
+                    (a - b).abs() <= 2.0 * MARGIN_GAP * a.max(b),
+                    "r {r}: {a}, {b}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn the_line_basis_is_recognized_by_its_terms() {

@@ -75,6 +75,7 @@ use conditioning::{LinearMap, Moments};
 use exact::{decide_exactly, dot_i128, verify_certificate, ExactDecision};
 use float::{float_decide, power_of_two_scale, FloatAnswer};
 use lifted::LiftedSet;
+pub(crate) use margin::max_margin_direction_from;
 pub use margin::{max_margin_direction, small_certificate, MarginDirection};
 use num_rational::BigRational;
 use relative::{relative, relative_into};
