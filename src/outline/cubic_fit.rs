@@ -56,10 +56,17 @@ pub(super) struct Fit {
     along: ([[f64; 4]; 4], [f64; 4]),
     /// Each sample's terms of its rows that do not depend on its parameter.
     scaled: Vec<Scaled>,
-    /// The rows across the run, one or two per sample (see [`Scaled::row`]).
-    rows: Vec<Across>,
-    weights: Vec<f64>,
-    residuals: Vec<f64>,
+    /// The rows across the run, per sample (see [`SampleRows`]).
+    rows: Vec<SampleRows>,
+}
+
+/// A sample's rows across the run, the curve's and (when the fit has chords) the chord's,
+/// with their weights and last residuals.
+#[derive(Clone, Copy)]
+struct SampleRows {
+    row: [Across; 2],
+    w: [f64; 2],
+    res: [f64; 2],
 }
 
 /// A row across the run, `c₁ (n · P1) + c₂ (n · P2) = r` with its sample's `n` (over its
@@ -130,9 +137,7 @@ impl Fit {
                 .iter()
                 .map(|s| Scaled::new(a, e, s.normal, s.t, s.tol))
                 .collect(),
-            rows: Vec::with_capacity(2 * samples.len()),
-            weights: Vec::with_capacity(2 * samples.len()),
-            residuals: Vec::with_capacity(2 * samples.len()),
+            rows: Vec::with_capacity(samples.len()),
         }
     }
 
@@ -148,28 +153,32 @@ impl Fit {
         chords: u32,
         rounds: usize,
     ) -> Option<([Point; 2], f64)> {
+        let per = if chords > 0 { 2 } else { 1 };
+        let w0 = 1.0 / (per * samples.len()) as f64;
         let rows = &mut self.rows;
         rows.clear();
         for (s, k) in samples.iter().zip(&self.scaled) {
-            rows.push(k.across(bernstein(s.u)));
-            if chords > 0 {
-                rows.push(k.across(chord_weights(s.u, chords)));
-            }
+            let chord = if chords > 0 {
+                k.across(chord_weights(s.u, chords))
+            } else {
+                [0.0; 3]
+            };
+            rows.push(SampleRows {
+                row: [k.across(bernstein(s.u)), chord],
+                w: [w0; 2],
+                res: [0.0; 2],
+            });
         }
-        let m = rows.len();
-        let w = &mut self.weights;
-        w.clear();
-        w.resize(m, 1.0 / m as f64);
-        let res = &mut self.residuals;
-        res.clear();
-        res.resize(m, 0.0);
         let (lhs0, rhs0) = self.along;
         let mut best: Option<([f64; 4], f64)> = None;
+        // The factor of the last round's reweighting, applied as the next round sums.
+        let mut reweight = None;
         for round in 0..rounds {
-            let Sums { blocks, sides } = if chords > 0 {
-                sums::<2>(rows, w, &self.scaled)
-            } else {
-                sums::<1>(rows, w, &self.scaled)
+            let Sums { blocks, sides } = match (chords > 0, reweight) {
+                (true, Some(inv)) => sums::<2, true>(rows, &self.scaled, inv),
+                (true, None) => sums::<2, false>(rows, &self.scaled, 0.0),
+                (false, Some(inv)) => sums::<1, true>(rows, &self.scaled, inv),
+                (false, None) => sums::<1, false>(rows, &self.scaled, 0.0),
             };
             let (mut lhs, mut rhs) = (lhs0, rhs0);
             let [b11, b12, b22] = blocks;
@@ -193,9 +202,9 @@ impl Fit {
             }
             let p = solve4(lhs, rhs)?;
             let Residuals { worst, total } = if chords > 0 {
-                residuals::<2>(rows, w, res, &self.scaled, p)
+                residuals::<2>(rows, &self.scaled, p)
             } else {
-                residuals::<1>(rows, w, res, &self.scaled, p)
+                residuals::<1>(rows, &self.scaled, p)
             };
             if best.is_none_or(|(_, b)| worst < b) {
                 best = Some((p, worst));
@@ -204,10 +213,7 @@ impl Fit {
             if total <= 1e-12 || round + 1 == rounds {
                 break;
             }
-            let inv = 1.0 / total;
-            for (wi, r) in w.iter_mut().zip(res.iter()) {
-                *wi *= r * inv;
-            }
+            reweight = Some(1.0 / total);
         }
         let (p, worst) = best?;
         Some(([Point::new(p[0], p[1]), Point::new(p[2], p[3])], worst))
@@ -223,15 +229,23 @@ struct Sums {
     sides: [f64; 4],
 }
 
-/// [`Sums`] of `rows` weighted by `w`, `PER` rows per sample of `scaled` (they share its
-/// normal).
-fn sums<const PER: usize>(rows: &[Across], w: &[f64], scaled: &[Scaled]) -> Sums {
+/// [`Sums`] of the first `PER` rows of each sample of `scaled` (they share its normal),
+/// by their weights; with `REWEIGHT`, each weight first multiplied by its residual times
+/// `inv` (Lawson's step after a round).
+fn sums<const PER: usize, const REWEIGHT: bool>(
+    rows: &mut [SampleRows],
+    scaled: &[Scaled],
+    inv: f64,
+) -> Sums {
     let mut blocks = [[0.0f64; 3]; 3];
     let mut sides = [0.0f64; 4];
-    for ((pair, ws), k) in rows.chunks_exact(PER).zip(w.chunks_exact(PER)).zip(scaled) {
+    for (r, k) in rows.iter_mut().zip(scaled) {
         let (mut s11, mut s12, mut s22, mut r1, mut r2) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for i in 0..PER {
-            let (row, wi) = (pair[i], ws[i]);
+            if REWEIGHT {
+                r.w[i] *= r.res[i] * inv;
+            }
+            let (row, wi) = (r.row[i], r.w[i]);
             let (p, q) = (wi * row[0], wi * row[1]);
             s11 += p * row[0];
             s12 += p * row[1];
@@ -258,32 +272,27 @@ struct Residuals {
     total: f64,
 }
 
-/// The residuals `|c₁ (n · P1) + c₂ (n · P2) − r|` of `rows` at the control points `p`
-/// into `res`, `PER` rows per sample of `scaled`.
+/// The residuals `|c₁ (n · P1) + c₂ (n · P2) − r|` of the first `PER` rows of each sample
+/// of `scaled` at the control points `p`, kept with the rows.
 fn residuals<const PER: usize>(
-    rows: &[Across],
-    w: &[f64],
-    res: &mut [f64],
+    rows: &mut [SampleRows],
     scaled: &[Scaled],
     p: [f64; 4],
 ) -> Residuals {
     let mut worst = 0.0f64;
     let mut total = 0.0;
-    for ((pair, (rs, ws)), k) in rows
-        .chunks_exact(PER)
-        .zip(res.chunks_exact_mut(PER).zip(w.chunks_exact(PER)))
-        .zip(scaled)
-    {
+    for (r, k) in rows.iter_mut().zip(scaled) {
         let (n1, n2) = (k.n.x * p[0] + k.n.y * p[1], k.n.x * p[2] + k.n.y * p[3]);
         for i in 0..PER {
-            let row = pair[i];
-            rs[i] = (row[0] * n1 + row[1] * n2 - row[2]).abs();
+            let row = r.row[i];
+            let res = (row[0] * n1 + row[1] * n2 - row[2]).abs();
+            r.res[i] = res;
             // (Not `max`, whose NaN handling lengthens the loop's dependency chain; a NaN
             // is skipped either way.)
-            if rs[i] > worst {
-                worst = rs[i];
+            if res > worst {
+                worst = res;
             }
-            total += ws[i] * rs[i];
+            total += r.w[i] * res;
         }
     }
     Residuals { worst, total }
