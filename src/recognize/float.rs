@@ -165,14 +165,44 @@ pub(super) fn float_decide(
 /// `|F_i|`): separation is invariant under this diagonal map, and the float solves are far
 /// better conditioned.
 pub(super) fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
-    max_abs
-        .iter()
-        .map(|&m| {
-            if m > 0 {
-                (-(m as f64).log2().ceil()).exp2()
-            } else {
-                1.0
+    max_abs.iter().map(|&m| power_of_two_below(m)).collect()
+}
+
+/// `2^−⌈log₂ m⌉` for `m > 0`, else 1: the scale of a coordinate of magnitude at most `m`.
+///
+/// Below `2^48` by the integer's bits: `⌈log₂ m⌉` is the bit length of `m − 1`, and
+/// `log₂` in `f64` gives the same ceiling there (for `m = 2^k + j`, `0 < j < 2^k`,
+/// `log₂ m − k ≥ j / 2^k` exceeds half a unit in the last place of `k` for every
+/// `k ≤ 48`). Above, as `f64` computes it.
+fn power_of_two_below(m: i64) -> f64 {
+    if m <= 0 {
+        1.0
+    } else if m < 1 << 48 {
+        let k = 64 - (m - 1).leading_zeros();
+        f64::from_bits(u64::from(1023 - k) << 52)
+    } else {
+        (-(m as f64).log2().ceil()).exp2()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn powers_of_two_by_bits_are_those_of_log2() {
+        // Every magnitude up to 2^20, and around every power of two up to 2^48 and past.
+        let by_log2 = |m: i64| (-(m as f64).log2().ceil()).exp2();
+        let mut ms: Vec<i64> = (1..=1 << 20).collect();
+        for k in 20..=50 {
+            for d in -3i64..=3 {
+                ms.push((1i64 << k) + d);
             }
-        })
-        .collect()
+        }
+        for m in ms {
+            assert_eq!(power_of_two_below(m).to_bits(), by_log2(m).to_bits(), "m = {m}");
+        }
+        assert_eq!(power_of_two_below(0), 1.0);
+        assert_eq!(power_of_two_below(-5), 1.0);
+    }
 }
