@@ -19,6 +19,9 @@ fn push_digits(mut n: u64, width: usize, s: &mut String) {
     s.extend(buf[k..].iter().map(|&b| char::from(b)));
 }
 
+/// `10^p` for the fast path of [`number`] (`powi` is a library call).
+const POWERS_OF_TEN: [f64; 10] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9];
+
 /// Formats `v` with at most `precision` decimals, trailing zeros stripped, no `-0` (also
 /// the number writer of the PDF and EPS exports).
 pub(crate) fn number(v: f64, precision: usize, s: &mut String) {
@@ -28,8 +31,7 @@ pub(crate) fn number(v: f64, precision: usize, s: &mut String) {
     }
     // Fast path: v·10^p rounded to an integer that f64 holds exactly (the same digits as
     // `format!` except, rarely, for a value within an ulp of a rounding tie).
-    if precision <= 9 {
-        let scale = 10f64.powi(precision as i32);
+    if let Some(&scale) = POWERS_OF_TEN.get(precision) {
         let n = (v * scale).round_ties_even();
         if n.abs() < 9.0e15 {
             let n = n as i64;
