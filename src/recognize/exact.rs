@@ -17,7 +17,7 @@ use super::support::{integer_direction, ExactSupport, ListSupport, Sets, Support
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{Signed, ToPrimitive, Zero};
+use num_traits::{PrimInt, Signed, ToPrimitive, Zero};
 
 /// `a·f` in `i128`, or `None` on overflow.
 #[inline]
@@ -141,33 +141,42 @@ pub(crate) fn barycentric_exact(points: &[Vec<i64>]) -> Option<Vec<BigRational>>
 /// and one reduction per weight `X_r / D`. In overflow-checked `i128` first, in big integers
 /// when that overflows.
 pub(crate) fn barycentric_signed(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
-    match barycentric_i128(points) {
-        Ok(found) => found,
-        Err(Overflow) => barycentric_big(points),
-    }
+    // (`i64` first: its divisions are the processor's, where `i128`'s are library calls;
+    // the same exact integers either way.)
+    barycentric_fixed::<i64>(points)
+        .or_else(|Overflow| barycentric_fixed::<i128>(points))
+        .unwrap_or_else(|Overflow| barycentric_big(points))
 }
 
 /// An `i128` operation overflowed.
 struct Overflow;
 
-/// [`barycentric_signed`] in `i128`.
-fn barycentric_i128(points: &[Vec<i64>]) -> Result<Option<Vec<BigRational>>, Overflow> {
+/// [`barycentric_signed`] in the fixed-width integers `T` (`i64`, `i128`), every operation
+/// checked.
+fn barycentric_fixed<T>(points: &[Vec<i64>]) -> Result<Option<Vec<BigRational>>, Overflow>
+where
+    T: PrimInt + Signed + Integer + From<i64> + Into<BigInt>,
+{
     let k = points.len();
     let Some(n) = points.first().map(Vec::len) else {
         return Ok(None);
     };
     let rows = n + 1;
-    let mut m: Vec<i128> = Vec::with_capacity(rows * (k + 1));
+    let mut m: Vec<T> = Vec::with_capacity(rows * (k + 1));
     for r in 0..rows {
         for c in 0..k {
-            m.push(if r < n { i128::from(points[c][r]) } else { 1 });
+            m.push(if r < n {
+                <T as From<i64>>::from(points[c][r])
+            } else {
+                T::one()
+            });
         }
-        m.push(i128::from(r == n));
+        m.push(if r == n { T::one() } else { T::zero() });
     }
     let w = k + 1;
-    let mut prev: i128 = 1;
+    let mut prev = T::one();
     for c in 0..k {
-        let Some(p) = (c..rows).find(|&r| m[r * w + c] != 0) else {
+        let Some(p) = (c..rows).find(|&r| !m[r * w + c].is_zero()) else {
             return Ok(None); // dependent columns
         };
         if p != c {
@@ -180,45 +189,45 @@ fn barycentric_i128(points: &[Vec<i64>]) -> Result<Option<Vec<BigRational>>, Ove
             let lead = m[r * w + c];
             for cc in c + 1..w {
                 let v = pivot
-                    .checked_mul(m[r * w + cc])
-                    .and_then(|x| x.checked_sub(lead.checked_mul(m[c * w + cc])?))
-                    .and_then(|x| x.checked_div(prev))
+                    .checked_mul(&m[r * w + cc])
+                    .and_then(|x| x.checked_sub(&lead.checked_mul(&m[c * w + cc])?))
+                    .and_then(|x| x.checked_div(&prev))
                     .ok_or(Overflow)?;
                 m[r * w + cc] = v;
             }
-            m[r * w + c] = 0;
+            m[r * w + c] = T::zero();
         }
         prev = pivot;
     }
-    if (k..rows).any(|r| m[r * w + k] != 0) {
+    if (k..rows).any(|r| !m[r * w + k].is_zero()) {
         return Ok(None);
     }
     let d = m[(k - 1) * w + (k - 1)];
-    let mut x = vec![0i128; k];
+    let mut x = vec![T::zero(); k];
     for r in (0..k).rev() {
-        let mut s = d.checked_mul(m[r * w + k]).ok_or(Overflow)?;
+        let mut s = d.checked_mul(&m[r * w + k]).ok_or(Overflow)?;
         for c in r + 1..k {
             s = m[r * w + c]
-                .checked_mul(x[c])
-                .and_then(|t| s.checked_sub(t))
+                .checked_mul(&x[c])
+                .and_then(|t| s.checked_sub(&t))
                 .ok_or(Overflow)?;
         }
-        x[r] = s.checked_div(m[r * w + r]).ok_or(Overflow)?;
+        x[r] = s.checked_div(&m[r * w + r]).ok_or(Overflow)?;
     }
-    // (Negations below need values above i128::MIN.)
-    if d == i128::MIN || x.contains(&i128::MIN) {
+    // (Negations below need values above the type's least.)
+    if d == T::min_value() || x.contains(&T::min_value()) {
         return Err(Overflow);
     }
     Ok(Some(
         x.into_iter()
             .map(|v| {
                 let g = v.gcd(&d);
-                let (num, den) = if d < 0 {
+                let (num, den) = if d.is_negative() {
                     (-v / g, -d / g)
                 } else {
                     (v / g, d / g)
                 };
-                BigRational::new_raw(BigInt::from(num), BigInt::from(den))
+                BigRational::new_raw(num.into(), den.into())
             })
             .collect(),
     ))
@@ -500,9 +509,12 @@ mod tests {
                 .map(|r| -points.iter().zip(&weights).map(|(p, w)| p[r] * w).sum::<i64>())
                 .collect();
             points.push(last);
-            let fast = barycentric_i128(&points).unwrap_or_default();
+            let fast = barycentric_fixed::<i128>(&points).unwrap_or_default();
             let slow = barycentric_big(&points);
-            if let Ok(found) = barycentric_i128(&points) {
+            if let Ok(found) = barycentric_fixed::<i128>(&points) {
+                prop_assert_eq!(&found, &slow);
+            }
+            if let Ok(found) = barycentric_fixed::<i64>(&points) {
                 prop_assert_eq!(&found, &slow);
             }
             if let Some(w) = fast.as_ref().or(slow.as_ref()) {

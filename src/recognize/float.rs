@@ -200,7 +200,11 @@ mod tests {
             }
         }
         for m in ms {
-            assert_eq!(power_of_two_below(m).to_bits(), by_log2(m).to_bits(), "m = {m}");
+            assert_eq!(
+                power_of_two_below(m).to_bits(),
+                by_log2(m).to_bits(),
+                "m = {m}"
+            );
         }
         assert_eq!(power_of_two_below(0), 1.0);
         assert_eq!(power_of_two_below(-5), 1.0);
