@@ -16,6 +16,7 @@
 #   potrace FILE.pbm -b svg -o TMP/potrace.svg          (default options, as examples/compare.rs)
 #   BIN IMAGE -o TMP/binK.svg --model M [--threads 1] [-q]  (--threads 1 and -q when BIN --help
 #                                                        lists them)
+# (each BIN run from a copy in TMP read back from disk, see below),
 # and the median per tool is kept. Prints a markdown table on standard output (image | potrace
 # ms | BIN ms | BIN/potrace …) and a last row with the median over images of each ratio
 # (images where either tool failed are left out of that median); progress on standard error.
@@ -94,6 +95,24 @@ done
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/time_vs_potrace.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
+# Each BIN runs from a copy whose pages are then dropped from the page cache, so that every
+# binary is read back from disk alike: a file just written starts 0.1–0.2 ms faster per
+# process than one read back (its pages are cached in larger folios: fewer page faults),
+# so binaries built at different times would not start alike (BENCHMARKS.md, stop 51).
+runnable=()
+for k in "${!bins[@]}"; do
+    mkdir -p "$tmp/exe$k"
+    cp "${bins[$k]}" "$tmp/exe$k/"
+    runnable+=("$tmp/exe$k/$(basename "${bins[$k]}")")
+done
+python3 - "${runnable[@]}" <<'PY'
+import os, sys
+for path in sys.argv[1:]:
+    fd = os.open(path, os.O_RDONLY)
+    os.fsync(fd)
+    os.posix_fadvise(fd, 0, 0, os.POSIX_FADV_DONTNEED)
+    os.close(fd)
+PY
 results="$tmp/results.tsv"   # image index, tool index, milliseconds (or instructions) or FAIL
 parts="$tmp/parts.tsv"       # image index, tool index, instructions of the decomposition
 : >"$results"
@@ -215,7 +234,7 @@ set_cmd() {
         cmd=(potrace "$tmp/$i.pbm" -b svg -o "$tmp/potrace.svg")
     else
         # shellcheck disable=SC2206  # the extra arguments are split on purpose
-        cmd=("${bins[$((t - 1))]}" "${images[$i]}" -o "$tmp/bin$t.svg" --model "$model" ${bin_extra[$((t - 1))]})
+        cmd=("${runnable[$((t - 1))]}" "${images[$i]}" -o "$tmp/bin$t.svg" --model "$model" ${bin_extra[$((t - 1))]})
     fi
 }
 
