@@ -131,6 +131,24 @@ fn a_folder_and_files_give_what_single_runs_give() {
 }
 
 #[test]
+fn a_batch_whose_every_input_fails_says_nothing_was_written() {
+    let dir = tempfile::Builder::new()
+        .prefix("layertrace-batch-")
+        .tempdir()
+        .unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("broken.png"), b"\x89PNG\r\n\x1a\nnot an image").unwrap();
+    let (code, err) = cli_in(d, &["broken.png", "missing.png", "--out-dir", "out"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("all 2 inputs failed; nothing was written"),
+        "{err}"
+    );
+    assert!(!err.contains("the others"), "{err}");
+    assert!(names(&d.join("out")).is_empty(), "{err}");
+}
+
+#[test]
 fn impossible_batches_are_refused_before_any_work() {
     let dir = inputs();
     let d = dir.path();

@@ -146,7 +146,12 @@ pub fn run(args: &Args, dir: &Path, pool: Option<Arc<rayon::ThreadPool>>) -> Res
     }
     bar.finish();
     let failed = failed.into_inner();
-    if failed > 0 {
+    if failed == files.len() {
+        eprintln!(
+            "layertrace: all {failed} inputs failed; nothing was written to {}",
+            dir.display()
+        );
+    } else if failed > 0 {
         eprintln!(
             "layertrace: {failed} of {} inputs failed; the others were written to {}",
             files.len(),
