@@ -138,17 +138,16 @@ pub(crate) fn barycentric_exact(points: &[Vec<i64>]) -> Option<Vec<BigRational>>
 /// Fraction-free throughout: Bareiss elimination of `[p_1 … p_k; 1 … 1] λ = [0; 1]`, then
 /// the back substitution of the integers `X_r = λ_r·D` (`D` the last pivot, the determinant
 /// of the eliminated `k × k` system; `m_rr X_r = D m_rk − Σ_{c>r} m_rc X_c` divides exactly),
-/// and one reduction per weight `X_r / D`. In overflow-checked `i128` first, in big integers
-/// when that overflows.
+/// and one reduction per weight `X_r / D`. In overflow-checked `i64` first (its divisions
+/// are the processor's, where `i128`'s are library calls), then `i128`, then big integers,
+/// each when the one before overflows: the same exact integers either way.
 pub(crate) fn barycentric_signed(points: &[Vec<i64>]) -> Option<Vec<BigRational>> {
-    // (`i64` first: its divisions are the processor's, where `i128`'s are library calls;
-    // the same exact integers either way.)
     barycentric_fixed::<i64>(points)
         .or_else(|Overflow| barycentric_fixed::<i128>(points))
         .unwrap_or_else(|Overflow| barycentric_big(points))
 }
 
-/// An `i128` operation overflowed.
+/// A fixed-width integer operation overflowed.
 struct Overflow;
 
 /// [`barycentric_signed`] in the fixed-width integers `T` (`i64`, `i128`), every operation

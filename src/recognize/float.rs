@@ -165,16 +165,20 @@ pub(super) fn float_decide(
 /// `|F_i|`): separation is invariant under this diagonal map, and the float solves are far
 /// better conditioned.
 pub(super) fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
-    max_abs.iter().map(|&m| power_of_two_below(m)).collect()
+    max_abs.iter().map(|&m| scale_for(m)).collect()
 }
 
-/// `2^−⌈log₂ m⌉` for `m > 0`, else 1: the scale of a coordinate of magnitude at most `m`.
+/// `2^−⌈log₂ m⌉` (one over the least power of two at least `m`) for `m > 0`, else 1: the
+/// scale of a coordinate of magnitude at most `m`.
 ///
-/// Below `2^48` by the integer's bits: `⌈log₂ m⌉` is the bit length of `m − 1`, and
-/// `log₂` in `f64` gives the same ceiling there (for `m = 2^k + j`, `0 < j < 2^k`,
-/// `log₂ m − k ≥ j / 2^k` exceeds half a unit in the last place of `k` for every
-/// `k ≤ 48`). Above, as `f64` computes it.
-fn power_of_two_below(m: i64) -> f64 {
+/// Below `2^48` by the integer's bits: `k = ⌈log₂ m⌉` is the bit length of `m − 1`, and
+/// `log₂` in `f64` gives the same ceiling there. For a power of two it is exact; otherwise
+/// `m = 2^(k−1)(1 + x)` with `2^(1−k) ≤ x < 1`, and `log₂ m − (k − 1) = log₂(1 + x)`, about
+/// `1.44 x` where `x` is small: more than a unit in the last place of `k − 1` (`2^−47` for
+/// `32 ≤ k − 1 < 48`, less below), so a logarithm within an ulp stays above `k − 1` and its
+/// ceiling is `k` (the test checks every `m` up to `2^20` and those around each power of two
+/// up to `2^50`, bit for bit). Above, as `f64` computes it.
+fn scale_for(m: i64) -> f64 {
     if m <= 0 {
         1.0
     } else if m < 1 << 48 {
@@ -200,13 +204,9 @@ mod tests {
             }
         }
         for m in ms {
-            assert_eq!(
-                power_of_two_below(m).to_bits(),
-                by_log2(m).to_bits(),
-                "m = {m}"
-            );
+            assert_eq!(scale_for(m).to_bits(), by_log2(m).to_bits(), "m = {m}");
         }
-        assert_eq!(power_of_two_below(0), 1.0);
-        assert_eq!(power_of_two_below(-5), 1.0);
+        assert_eq!(scale_for(0), 1.0);
+        assert_eq!(scale_for(-5), 1.0);
     }
 }

@@ -63,11 +63,13 @@ impl LiftedSet {
         debug_assert_eq!(lifted.len(), self.dim);
         // The planar models' sizes copied as arrays: slices of unknown length are copied
         // by calls to `memcpy`, which cost more than the copies themselves.
-        match (point.len(), lifted.len()) {
-            (2, 2) => self.push_sized::<2, 2>(point, lifted),
-            (2, 3) => self.push_sized::<2, 3>(point, lifted),
-            (2, 5) => self.push_sized::<2, 5>(point, lifted),
-            (2, 9) => self.push_sized::<2, 9>(point, lifted),
+        match (point, lifted) {
+            (&[x, y], &[a, b]) => self.push_sized([x, y], [a, b]),
+            (&[x, y], &[a, b, c]) => self.push_sized([x, y], [a, b, c]),
+            (&[x, y], &[a, b, c, d, e]) => self.push_sized([x, y], [a, b, c, d, e]),
+            (&[x, y], &[a, b, c, d, e, f, g, h, i]) => {
+                self.push_sized([x, y], [a, b, c, d, e, f, g, h, i]);
+            }
             _ => {
                 self.points.extend_from_slice(point);
                 self.lifted.extend_from_slice(lifted);
@@ -78,11 +80,7 @@ impl LiftedSet {
 
     /// [`LiftedSet::push`] of a point of `P` coordinates lifted to `N`.
     #[inline]
-    fn push_sized<const P: usize, const N: usize>(&mut self, point: &[i64], lifted: &[i64]) {
-        let (Ok(point), Ok(lifted)) = (<[i64; P]>::try_from(point), <[i64; N]>::try_from(lifted))
-        else {
-            return;
-        };
+    fn push_sized<const P: usize, const N: usize>(&mut self, point: [i64; P], lifted: [i64; N]) {
         self.points.extend_from_slice(&point);
         self.lifted.extend_from_slice(&lifted);
         self.float.extend_from_slice(&lifted.map(|v| v as f64));

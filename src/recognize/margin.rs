@@ -51,7 +51,10 @@ const MARGIN_GAP: f64 = 1e-3;
 
 /// The float GJK run to convergence in coordinates scaled by `scale`: the direction of
 /// largest margin, unscaled (or, when the run stalls, its last separating direction). `None`
-/// if the sets are not (numerically) separated.
+/// if the sets are not (numerically) separated. With `hint` (a direction in the lifted
+/// coordinates), the run starts from the pair of points tightest along it instead of an
+/// arbitrary one: the margin found is the same within [`MARGIN_GAP`], the direction may
+/// differ by as much.
 fn largest_margin_direction(
     sets: Sets<'_>,
     scale: &[f64],
