@@ -342,6 +342,29 @@ impl Sink {
                     }
                 }
             }
+            // A row of consecutive pixels, 64 to a word, 8 to a byte.
+            None if step == 1 => {
+                let (t, invert) = (self.threshold, self.opts.invert);
+                let mut words = grey.chunks_exact(64);
+                for (c, chunk) in words.by_ref().enumerate() {
+                    let mut bytes = [0u8; 8];
+                    for (byte, eight) in bytes.iter_mut().zip(chunk.chunks_exact(8)) {
+                        let mut b = 0u8;
+                        for (i, &g) in eight.iter().enumerate() {
+                            b |= u8::from((g < t) != invert) << i;
+                        }
+                        *byte = b;
+                    }
+                    self.mask
+                        .set_word_at(base + 64 * c, u64::from_le_bytes(bytes));
+                }
+                let done = grey.len() - words.remainder().len();
+                for (k, &g) in words.remainder().iter().enumerate() {
+                    if (g < t) != invert {
+                        self.mask.set_index(base + done + k);
+                    }
+                }
+            }
             None => {
                 for (k, &g) in grey.iter().enumerate() {
                     if (g < self.threshold) != self.opts.invert {
@@ -419,6 +442,43 @@ mod tests {
     use super::*;
     use crate::bitmap::tests::fixed;
     use image::{ImageBuffer, Luma};
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Rows put whole (64 pixels to a word) make the mask that pixels put one at a time
+        /// make, at any width, threshold and inversion.
+        #[test]
+        fn rows_put_whole_mask_as_pixels_do(
+            w in 1u32..200,
+            h in 1u32..4,
+            t in any::<u8>(),
+            invert in any::<bool>(),
+            seed in any::<u64>(),
+        ) {
+            let opts = LoadOptions { invert, ..fixed(t) };
+            let path = Path::new("rows.png");
+            let (mut rows, mut pixels) = (
+                Sink::new(w, h, &opts, path).expect("a sink"),
+                Sink::new(w, h, &opts, path).expect("a sink"),
+            );
+            let mut s = seed | 1;
+            for y in 0..h {
+                let grey: Vec<u8> = (0..w)
+                    .map(|_| {
+                        s ^= s << 13;
+                        s ^= s >> 7;
+                        s ^= s << 17;
+                        (s >> 24) as u8
+                    })
+                    .collect();
+                rows.put(y, 0, 1, &grey);
+                for (x, g) in (0u32..).zip(&grey) {
+                    pixels.put(y, x, 1, std::slice::from_ref(g));
+                }
+            }
+            prop_assert_eq!(&rows.mask, &pixels.mask);
+        }
+    }
 
     fn png_bytes(img: &DynamicImage) -> Vec<u8> {
         let mut out = Cursor::new(Vec::new());

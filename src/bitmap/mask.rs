@@ -59,6 +59,21 @@ impl Mask {
         }
     }
 
+    /// Sets to foreground the pixels of row-major indices `start + b` for the bits `b` set in
+    /// `word`, as [`Mask::set_index`] sets them one by one: 64 pixels with two word updates.
+    #[inline]
+    pub(crate) fn set_word_at(&mut self, start: usize, word: u64) {
+        let (q, r) = (start / 64, start % 64);
+        if let Some(w) = self.bits.get_mut(q) {
+            *w |= word << r;
+        }
+        if r != 0 {
+            if let Some(w) = self.bits.get_mut(q + 1) {
+                *w |= word >> (64 - r);
+            }
+        }
+    }
+
     /// True iff the pixel of row-major index `i` is foreground (false past the last pixel).
     #[inline]
     pub(crate) fn get_index(&self, i: usize) -> bool {
@@ -248,6 +263,24 @@ mod tests {
     use proptest::prelude::*;
 
     proptest! {
+        /// `set_word_at` sets the pixels of its word's bits, as `set_index` does one by one.
+        #[test]
+        fn words_set_the_pixels_of_their_bits(
+            w in 1u32..150,
+            h in 1u32..5,
+            start in 0usize..800,
+            word in any::<u64>(),
+        ) {
+            let (mut by_word, mut by_pixel) = (Mask::new(w, h), Mask::new(w, h));
+            by_word.set_word_at(start, word);
+            for b in 0..64 {
+                if word >> b & 1 == 1 {
+                    by_pixel.set_index(start + b);
+                }
+            }
+            prop_assert_eq!(&by_word.bits, &by_pixel.bits);
+        }
+
         /// `bits_at` and `set_range` agree with pixel-by-pixel `get` and `set`.
         #[test]
         fn word_access_matches_pixels(
