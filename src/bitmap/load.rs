@@ -342,33 +342,30 @@ impl Sink {
                     }
                 }
             }
-            // A row of consecutive pixels, 64 to a word, 8 to a byte.
-            None if step == 1 => {
-                let (t, invert) = (self.threshold, self.opts.invert);
-                let mut words = grey.chunks_exact(64);
-                for (c, chunk) in words.by_ref().enumerate() {
-                    let mut bytes = [0u8; 8];
-                    for (byte, eight) in bytes.iter_mut().zip(chunk.chunks_exact(8)) {
-                        let mut b = 0u8;
-                        for (i, &g) in eight.iter().enumerate() {
-                            b |= u8::from((g < t) != invert) << i;
-                        }
-                        *byte = b;
-                    }
-                    self.mask
-                        .set_word_at(base + 64 * c, u64::from_le_bytes(bytes));
-                }
-                let done = grey.len() - words.remainder().len();
-                for (k, &g) in words.remainder().iter().enumerate() {
-                    if (g < t) != invert {
-                        self.mask.set_index(base + done + k);
-                    }
-                }
-            }
             None => {
-                for (k, &g) in grey.iter().enumerate() {
-                    if (g < self.threshold) != self.opts.invert {
-                        self.mask.set_index(base + k * step);
+                let (t, invert) = (self.threshold, self.opts.invert);
+                // A row of consecutive pixels: its whole words of 64 first, 8 to a byte;
+                // the rest pixel by pixel.
+                let mut done = 0;
+                if step == 1 {
+                    let words = grey.chunks_exact(64);
+                    done = grey.len() - words.remainder().len();
+                    for (c, chunk) in words.enumerate() {
+                        let mut bytes = [0u8; 8];
+                        for (byte, eight) in bytes.iter_mut().zip(chunk.chunks_exact(8)) {
+                            let mut b = 0u8;
+                            for (i, &g) in eight.iter().enumerate() {
+                                b |= u8::from((g < t) != invert) << i;
+                            }
+                            *byte = b;
+                        }
+                        self.mask
+                            .set_word_at(base + 64 * c, u64::from_le_bytes(bytes));
+                    }
+                }
+                for (k, &g) in grey[done..].iter().enumerate() {
+                    if (g < t) != invert {
+                        self.mask.set_index(base + (done + k) * step);
                     }
                 }
             }
