@@ -16,43 +16,43 @@ thread_local! {
 }
 
 /// Most buffers kept per thread, and the largest kept (bytes): a huge contour's windows are
-/// rare, and keeping them would hold their memory to the end of the run.
+/// rare, and keeping them would hold their memory to the end of the run (at most 24 MiB
+/// per thread).
 const SPARE_COUNT: usize = 6;
 const SPARE_MAX_BYTES: usize = 1 << 22;
 
-/// How much longer than asked a spare buffer may be and still be cut to the length asked
-/// (else a fresh one is made, and the long one kept for long windows): a buffer cut short
-/// is written whole again when it grows back, and windows of Chromium's 256-px tiles
-/// between small ones made a third of a memset per tile (the 3000² sample: 42 M
-/// instructions).
+/// How many times as long as asked a spare buffer may be and still be cut to the length
+/// asked (else it stays for longer windows): a buffer cut short is zeroed again over the
+/// rest of its length when it grows back, and a window of one of Chromium's 256-px tiles
+/// after a small window re-zeroed up to 64 KiB (memset under `painted_in`: 42 M
+/// instructions on the 3000² sample).
 const SPARE_SLACK: usize = 4;
 
-/// Buffers up to this length (bytes) are cut to any shorter length: writing them again
-/// costs little.
+/// Spare buffers up to this length (bytes) are cut to any shorter length: zeroing them
+/// again costs little.
 const SPARE_SMALL: usize = 4096;
 
 /// `len` zero bytes, in a reused buffer when one is spare. Spare buffers are zero over their
 /// length (see [`take_painted`]), so only a longer tail is written. The buffer is the
-/// shortest spare one at least `len` long (unless it is more than [`SPARE_SLACK`] times
-/// longer: then a fresh one), else the longest, grown.
+/// shortest spare one at least `len` long and at most [`SPARE_SLACK`] times as long (or at
+/// most [`SPARE_SMALL`] bytes), else the longest spare one shorter than `len`, grown, else a
+/// fresh one (when every spare one is longer still, or there is none).
 fn zeroed(len: usize) -> Vec<u8> {
     let spare = SPARE.with(|s| {
         let mut s = s.borrow_mut();
-        let long_enough = s
+        let limit = len.saturating_mul(SPARE_SLACK).max(SPARE_SMALL);
+        let cut = s
             .iter()
             .enumerate()
-            .filter(|(_, v)| v.len() >= len)
+            .filter(|(_, v)| v.len() >= len && v.len() <= limit)
             .min_by_key(|(_, v)| v.len());
-        let pick = match long_enough {
-            Some((i, v)) => {
-                (v.len() <= len.saturating_mul(SPARE_SLACK).max(SPARE_SMALL)).then_some(i)
-            }
-            None => s
-                .iter()
+        let grown = || {
+            s.iter()
                 .enumerate()
+                .filter(|(_, v)| v.len() < len)
                 .max_by_key(|(_, v)| v.len())
-                .map(|(i, _)| i),
         };
+        let pick = cut.or_else(grown).map(|(i, _)| i);
         pick.map(|i| s.swap_remove(i))
     });
     let mut v = spare.unwrap_or_default();
@@ -64,15 +64,24 @@ fn zeroed(len: usize) -> Vec<u8> {
     v
 }
 
-/// Gives a buffer, zero over its whole length, back for [`zeroed`] to reuse.
+/// Gives a buffer, zero over its whole length, back for [`zeroed`] to reuse; when
+/// [`SPARE_COUNT`] are kept already, the shortest of them and it goes.
 fn recycle(v: Vec<u8>) {
     if v.capacity() == 0 || v.capacity() > SPARE_MAX_BYTES {
         return;
     }
     SPARE.with(|s| {
         let mut s = s.borrow_mut();
-        if s.len() < SPARE_COUNT {
-            s.push(v);
+        s.push(v);
+        if s.len() > SPARE_COUNT {
+            let shortest = s
+                .iter()
+                .enumerate()
+                .min_by_key(|(_, v)| v.len())
+                .map(|(i, _)| i);
+            if let Some(i) = shortest {
+                s.swap_remove(i);
+            }
         }
     });
 }
