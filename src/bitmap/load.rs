@@ -344,8 +344,8 @@ impl Sink {
             }
             None => {
                 let (t, invert) = (self.threshold, self.opts.invert);
-                // A row of consecutive pixels: its whole words of 64 first, 8 to a byte;
-                // the rest pixel by pixel.
+                // A row of consecutive pixels: its whole words of 64 first, eight pixels
+                // compared at once ([`Below`]); the rest pixel by pixel.
                 let mut done = 0;
                 if step == 1 {
                     let words = grey.chunks_exact(64);

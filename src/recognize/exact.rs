@@ -480,8 +480,9 @@ mod tests {
     }
 
     proptest! {
-        /// The `i128` path and the big-integer path give the same answer, and it solves the
-        /// system; some instances overflow `i128` (large coordinates) and take the big path.
+        /// The `i64` and `i128` paths and the big-integer path give the same answer, and it
+        /// solves the system; some instances overflow the fixed widths (large coordinates)
+        /// and take the big path.
         #[test]
         fn barycentric_paths_agree(
             n in 1usize..7,
