@@ -14,7 +14,8 @@
 //! temporary file exists, the handler ends the process at once; while one does, it only
 //! records the signal, which the set's next step (a write, or the commit before its first
 //! rename) answers with [`Error::Interrupted`], removing its temporaries. A commit that has
-//! begun to put files in place finishes.
+//! begun to put files in place finishes; after [`OutputSet::commit_final`], the last of a
+//! process, a signal no longer ends it (but while it writes standard output or a device).
 //!
 //! # Destinations
 //! * `-` is standard output.
@@ -56,6 +57,11 @@ fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
 static NO_TEMPORARIES: LazyLock<Arc<AtomicBool>> =
     LazyLock::new(|| Arc::new(AtomicBool::new(true)));
 
+/// True from the start of an [`OutputSet::commit_final`] on: [`NO_TEMPORARIES`] is not set
+/// again when the temporary files are gone (only while standard output and devices are
+/// written), so the handlers only record signals until the process ends.
+static FINISHING: AtomicBool = AtomicBool::new(false);
+
 /// The number of the signal a handler recorded, 0 for none.
 static CAUGHT: LazyLock<Arc<AtomicUsize>> = LazyLock::new(|| Arc::new(AtomicUsize::new(0)));
 
@@ -74,8 +80,9 @@ static CAUGHT: LazyLock<Arc<AtomicUsize>> = LazyLock::new(|| Arc::new(AtomicUsiz
 pub struct InterruptFlags {
     /// True while no temporary file exists: the thread that creates one clears it first
     /// (also for the file [`OutputSet::add`] makes and removes at once) and then looks for
-    /// a recorded signal, and it is set again when the last one is renamed or removed. Not
-    /// to be stored by anyone else.
+    /// a recorded signal, and it is set again when the last one is renamed or removed —
+    /// from an [`OutputSet::commit_final`] on, only while standard output or a device is
+    /// written. Not to be stored by anyone else.
     pub no_temporaries: Arc<AtomicBool>,
     /// Where a handler stores the signal's number; an output set that holds temporary files
     /// stops with [`Error::Interrupted`] at its next step once it is not 0.
@@ -116,7 +123,7 @@ fn check_caught() -> Result<(), Error> {
 
 /// Sets [`NO_TEMPORARIES`] again if `list` (the locked [`PENDING`]) is empty.
 fn settle(list: &[PathBuf]) {
-    if list.is_empty() {
+    if list.is_empty() && !FINISHING.load(Ordering::SeqCst) {
         NO_TEMPORARIES.store(true, Ordering::SeqCst);
     }
 }
@@ -454,6 +461,33 @@ impl OutputSet {
     pub fn commit(self) -> Result<(), Error> {
         // The last moment a signal stops the run: from the first rename on, it finishes.
         check_caught()?;
+        self.put_in_place(false)
+    }
+
+    /// [`OutputSet::commit`] for the last set of a process whose work ends with it: from
+    /// here on, the handlers of [`interrupt_flags`] only record a signal until the process
+    /// ends — except while standard output or a device is written, when one ends it at once
+    /// (a reader that stopped reading must not hold the process) — so a signal that comes
+    /// once the files are in place cannot end the process as if nothing had been written
+    /// (with 128 + its number, which says that no destination changed); the caller ends it
+    /// with its own result. [`Error::Interrupted`], with nothing put in place, if a signal
+    /// was recorded before.
+    pub fn commit_final(self) -> Result<(), Error> {
+        {
+            let _list = pending();
+            // Cleared, then a recorded signal looked for (the order `Temp::create` follows):
+            // a handler either reads the flag cleared or its signal is found here.
+            FINISHING.store(true, Ordering::SeqCst);
+            NO_TEMPORARIES.store(false, Ordering::SeqCst);
+        }
+        check_caught()?;
+        self.put_in_place(true)
+    }
+
+    /// Renames the written outputs into place, then writes standard output and devices;
+    /// `finishing`: [`OutputSet::commit_final`]'s, whose flag is set only while those are
+    /// written.
+    fn put_in_place(self, finishing: bool) -> Result<(), Error> {
         let mut streams = Vec::new();
         for entry in self.entries {
             let err = |source| Error::Write {
@@ -474,18 +508,30 @@ impl OutputSet {
                 Sink::Stdout { bytes: None } | Sink::InPlace { bytes: None, .. } => {}
             }
         }
-        for (path, file, bytes) in streams {
-            let result = match file {
-                Some(mut f) => f.write_all(&bytes).and_then(|()| f.flush()),
-                None => {
-                    let mut out = std::io::stdout().lock();
-                    out.write_all(&bytes).and_then(|()| out.flush())
-                }
-            };
-            result.map_err(|source| Error::Write { path, source })?;
+        if finishing && !streams.is_empty() {
+            NO_TEMPORARIES.store(true, Ordering::SeqCst);
         }
-        Ok(())
+        let written = write_streams(streams);
+        if finishing {
+            NO_TEMPORARIES.store(false, Ordering::SeqCst);
+        }
+        written
     }
+}
+
+/// Writes standard output and devices, in order.
+fn write_streams(streams: Vec<(PathBuf, Option<File>, Vec<u8>)>) -> Result<(), Error> {
+    for (path, file, bytes) in streams {
+        let result = match file {
+            Some(mut f) => f.write_all(&bytes).and_then(|()| f.flush()),
+            None => {
+                let mut out = std::io::stdout().lock();
+                out.write_all(&bytes).and_then(|()| out.flush())
+            }
+        };
+        result.map_err(|source| Error::Write { path, source })?;
+    }
+    Ok(())
 }
 
 /// Writes `bytes` to `path` whole or not at all: an [`OutputSet`] of one output (see the

@@ -1,6 +1,7 @@
 //! A signal recorded while an output set holds temporary files ([`interrupt_flags`]): the
-//! set's next step stops with `Error::Interrupted` and leaves nothing behind. Its own test
-//! binary: the flags are the process', and no other test may see them set.
+//! set's next step stops with `Error::Interrupted` and leaves nothing behind; after the
+//! process' last commit a handler only records. Its own test binary: the flags are the
+//! process', and no other test may see them set.
 
 mod common;
 
@@ -73,4 +74,28 @@ fn a_recorded_signal_stops_the_set_at_its_next_step() {
     assert!(idle());
     assert_eq!(names(d), ["a.svg", "b.json"]);
     assert_eq!(std::fs::read(&a).unwrap(), b"<svg/>");
+
+    // The process' last commit, a signal recorded before it: nothing put in place.
+    std::fs::write(&a, b"old").unwrap();
+    let outs = written(&a, &b);
+    flags.caught.store(2, Ordering::SeqCst);
+    assert!(matches!(
+        outs.commit_final(),
+        Err(Error::Interrupted { signal: 2 })
+    ));
+    assert_eq!(names(d), ["a.svg", "b.json"]);
+    assert_eq!(std::fs::read(&a).unwrap(), b"old");
+    // None recorded: put in place, and from then on a handler only records a signal (the
+    // run is over; the process must not end as if nothing had been written).
+    flags.caught.store(0, Ordering::SeqCst);
+    written(&a, &b).commit_final().unwrap();
+    assert_eq!(names(d), ["a.svg", "b.json"]);
+    assert_eq!(std::fs::read(&a).unwrap(), b"<svg/>");
+    assert!(!idle());
+    // Later sets neither set it again.
+    let mut outs = OutputSet::new(None);
+    let ia = outs.add(&a).unwrap();
+    outs.write(ia, b"x".to_vec()).unwrap();
+    outs.commit().unwrap();
+    assert!(!idle());
 }

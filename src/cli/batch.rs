@@ -125,7 +125,7 @@ pub fn run(args: &Args, dir: &Path, pool: Option<Arc<rayon::ThreadPool>>) -> Res
             let mut opts = options(args, &outputs, pool.clone());
             // The memory limit is shared by the inputs processed at the same time.
             opts.max_memory /= concurrent;
-            match one(args, file, &outputs, &opts) {
+            match one(args, file, &outputs, &opts, false) {
                 Ok(done) => {
                     let text = done.text(args.quiet);
                     if !text.is_empty() {

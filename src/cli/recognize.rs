@@ -106,7 +106,7 @@ pub fn run(args: &RecognizeArgs) -> Result<(), Error> {
         e => e,
     })?;
     outs.write(out, recognition_json(&r).into_bytes())?;
-    outs.commit()?;
+    outs.commit_final()?;
     let [i, a, b] = r.counts;
     if !args.quiet {
         let answer = match &r.answer {

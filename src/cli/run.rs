@@ -84,7 +84,7 @@ pub fn run(args: &Args) -> Result<bool, Error> {
                 };
                 b.set(p.done, p.total, stage);
             }));
-            let done = one(args, &input, &outputs, &options);
+            let done = one(args, &input, &outputs, &options, true);
             bar.finish();
             let text = done?.text(args.quiet);
             if !text.is_empty() {
@@ -158,12 +158,15 @@ impl Finished {
 }
 
 /// Vectorizes `input` and writes its outputs, whole or not at all: every output is checked
-/// before the input is read and put in place only when everything succeeded.
+/// before the input is read and put in place only when everything succeeded. `last`: the
+/// process ends after this input (its commit is [`OutputSet::commit_final`]: a signal that
+/// comes once the files are in place no longer ends it with 128 + the signal).
 pub fn one(
     args: &Args,
     input: &Path,
     outputs: &Outputs,
     options: &Options,
+    last: bool,
 ) -> Result<Finished, Error> {
     let start = Instant::now();
     let stdin = input == Path::new("-");
@@ -235,7 +238,11 @@ pub fn one(
     for (id, bytes) in encoded {
         outs.write(id, bytes)?;
     }
-    outs.commit()?;
+    if last {
+        outs.commit_final()?;
+    } else {
+        outs.commit()?;
+    }
     // Not computed when it is not shown: classifying every piece took 1% of a run on noise.
     let summary = if args.quiet {
         String::new()

@@ -7,8 +7,11 @@
 //!   handlers end the process at once while [`layertrace::interrupt_flags`]'
 //!   `no_temporaries` is set, else only record the signal, which the output set answers at
 //!   its next step (`Error::Interrupted`, its files removed; sound whatever thread runs the
-//!   handler, see [`layertrace::InterruptFlags`]). A thread cost 0.08–0.15 ms of every run
-//!   (2–3% of a glyph's).
+//!   handler, see [`layertrace::InterruptFlags`]). Its commit is the last
+//!   ([`layertrace::OutputSet::commit_final`]): once the files go in place the run is over,
+//!   and a later signal (but while standard output is written) no longer ends it — the
+//!   process exits 0, its outputs in place, not 128 + N as if nothing had changed. A thread
+//!   cost 0.08–0.15 ms of every run (2–3% of a glyph's).
 //! * Many inputs (`--out-dir`): the workers write their inputs' files while others compute,
 //!   and a signal must end them all at once: a thread waits for the signals and calls
 //!   [`layertrace::exit_removing_temporaries`], which holds the list of temporary files
