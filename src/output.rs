@@ -14,8 +14,9 @@
 //! temporary file exists, the handler ends the process at once; while one does, it only
 //! records the signal, which the set's next step (a write, or the commit before its first
 //! rename) answers with [`Error::Interrupted`], removing its temporaries. A commit that has
-//! begun to put files in place finishes; after [`OutputSet::commit_final`], the last of a
-//! process, a signal no longer ends it (but while it writes standard output or a device).
+//! begun to put files in place finishes; in [`OutputSet::commit_final`], the last of a
+//! process, a signal is only recorded while the files are renamed, and then ends the
+//! process with success.
 //!
 //! # Destinations
 //! * `-` is standard output.
@@ -42,7 +43,7 @@ use crate::error::Error;
 use std::fs::{File, Metadata, OpenOptions, Permissions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Arc, LazyLock, Mutex, MutexGuard};
 
 /// Temporary files not yet put in place or removed, for [`exit_removing_temporaries`].
@@ -57,10 +58,21 @@ fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
 static NO_TEMPORARIES: LazyLock<Arc<AtomicBool>> =
     LazyLock::new(|| Arc::new(AtomicBool::new(true)));
 
-/// True from the start of an [`OutputSet::commit_final`] on: [`NO_TEMPORARIES`] is not set
-/// again when the temporary files are gone (only while standard output and devices are
-/// written), so the handlers only record signals until the process ends.
-static FINISHING: AtomicBool = AtomicBool::new(false);
+/// How far the process' last commit ([`OutputSet::commit_final`]) has come: [`RUNNING`],
+/// [`CHECKING`] or [`PUTTING`].
+static LAST_COMMIT: AtomicU8 = AtomicU8::new(RUNNING);
+/// No last commit has begun.
+const RUNNING: u8 = 0;
+/// The last commit has begun: a signal recorded before is looked for, and
+/// [`NO_TEMPORARIES`] is no longer set when the temporary files are gone (only while
+/// standard output and devices are written).
+const CHECKING: u8 = 1;
+/// The last commit puts the files in place (or has): a recorded signal no longer stops the
+/// run.
+const PUTTING: u8 = 2;
+
+/// True once the last commit has put every file in place: see [`InterruptFlags`].
+static FINISHED: LazyLock<Arc<AtomicBool>> = LazyLock::new(|| Arc::new(AtomicBool::new(false)));
 
 /// The number of the signal a handler recorded, 0 for none.
 static CAUGHT: LazyLock<Arc<AtomicUsize>> = LazyLock::new(|| Arc::new(AtomicUsize::new(0)));
@@ -69,13 +81,17 @@ static CAUGHT: LazyLock<Arc<AtomicUsize>> = LazyLock::new(|| Arc::new(AtomicUsiz
 /// that cannot remove files themselves (see the module documentation).
 ///
 /// With the signal-hook crate, for each signal `sig`:
-/// `flag::register_usize(sig, flags.caught, sig as usize)` and
-/// `flag::register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries)`, in that
-/// order (record, then end): whatever thread runs the handler, either it finds the flag
-/// cleared or the thread about to create a temporary file finds the signal and makes none.
-/// A recorded signal is answered by the sets that hold temporary files, at their next
-/// step; the caller ends the process then (with several sets written from several threads,
-/// a thread that calls [`exit_removing_temporaries`] answers every set at once).
+/// `flag::register_usize(sig, flags.caught, sig as usize)`,
+/// `flag::register_conditional_shutdown(sig, 128 + sig, flags.no_temporaries)` and
+/// `flag::register_conditional_shutdown(sig, 0, flags.finished)`, in that order (record,
+/// then end): whatever thread runs the handler, either it finds the flag cleared or the
+/// thread about to create a temporary file finds the signal and makes none. A recorded
+/// signal is answered by the sets that hold temporary files, at their next step; the caller
+/// ends the process then (with several sets written from several threads, a thread that
+/// calls [`exit_removing_temporaries`] answers every set at once). Once the process' last
+/// commit ([`OutputSet::commit_final`]) has put its files in place, a signal ends the
+/// process with success (but while it writes standard output or a device: with 128 + the
+/// signal, the files in place).
 #[derive(Clone, Debug)]
 pub struct InterruptFlags {
     /// True while no temporary file exists: the thread that creates one clears it first
@@ -87,6 +103,9 @@ pub struct InterruptFlags {
     /// Where a handler stores the signal's number; an output set that holds temporary files
     /// stops with [`Error::Interrupted`] at its next step once it is not 0.
     pub caught: Arc<AtomicUsize>,
+    /// True once an [`OutputSet::commit_final`] has put its files in place: the run is
+    /// over. Not to be stored by anyone else.
+    pub finished: Arc<AtomicBool>,
 }
 
 /// The process' [`InterruptFlags`].
@@ -100,12 +119,18 @@ pub fn interrupt_flags() -> InterruptFlags {
     InterruptFlags {
         no_temporaries: Arc::clone(&NO_TEMPORARIES),
         caught: Arc::clone(&CAUGHT),
+        finished: Arc::clone(&FINISHED),
     }
 }
 
 impl InterruptFlags {
-    /// The signal a handler recorded in `caught`, if any.
+    /// The signal a handler recorded in `caught`, if any — none once the process' last
+    /// commit ([`OutputSet::commit_final`]) has begun to put files in place: a signal then
+    /// stops nothing, and an error after it is the run's own.
     pub fn recorded(&self) -> Option<i32> {
+        if LAST_COMMIT.load(Ordering::SeqCst) == PUTTING {
+            return None;
+        }
         match self.caught.load(Ordering::SeqCst) {
             0 => None,
             sig => Some(i32::try_from(sig).unwrap_or(i32::MAX)),
@@ -123,7 +148,7 @@ fn check_caught() -> Result<(), Error> {
 
 /// Sets [`NO_TEMPORARIES`] again if `list` (the locked [`PENDING`]) is empty.
 fn settle(list: &[PathBuf]) {
-    if list.is_empty() && !FINISHING.load(Ordering::SeqCst) {
+    if list.is_empty() && LAST_COMMIT.load(Ordering::SeqCst) == RUNNING {
         NO_TEMPORARIES.store(true, Ordering::SeqCst);
     }
 }
@@ -150,12 +175,28 @@ fn forget(list: &mut Vec<PathBuf>, path: &Path) {
 /// let _: fn(i32) -> ! = layertrace::exit_removing_temporaries;
 /// ```
 pub fn exit_removing_temporaries(code: i32) -> ! {
-    let list = pending();
-    for path in list.iter() {
-        let _ = std::fs::remove_file(path);
+    loop {
+        let list = pending();
+        if LAST_COMMIT.load(Ordering::SeqCst) != PUTTING {
+            for path in list.iter() {
+                let _ = std::fs::remove_file(path);
+            }
+            // The lock stays held: `exit` does not unwind, so no other thread can add or
+            // rename a file.
+            std::process::exit(code)
+        }
+        // The process' last commit puts its files in place: as the handlers of
+        // `InterruptFlags` do, end it with `code` while it writes standard output or a
+        // device, with success once it is done, and else wait for the renames.
+        if NO_TEMPORARIES.load(Ordering::SeqCst) {
+            std::process::exit(code)
+        }
+        if FINISHED.load(Ordering::SeqCst) {
+            std::process::exit(0)
+        }
+        drop(list);
+        std::thread::sleep(std::time::Duration::from_millis(1));
     }
-    // The lock stays held: `exit` does not unwind, so no other thread can add a file.
-    std::process::exit(code)
 }
 
 /// A temporary file beside a destination, registered for removal on signals.
@@ -172,7 +213,7 @@ impl Temp {
         // it reads the flag, and all four accesses are sequentially consistent, so either
         // it reads the flag cleared or this reads its signal — whatever thread it runs on.
         NO_TEMPORARIES.store(false, Ordering::SeqCst);
-        if CAUGHT.load(Ordering::SeqCst) != 0 {
+        if interrupt_flags().recorded().is_some() {
             settle(&list);
             return Err(std::io::ErrorKind::Interrupted.into());
         }
@@ -464,29 +505,30 @@ impl OutputSet {
         self.put_in_place(false)
     }
 
-    /// [`OutputSet::commit`] for the last set of a process whose work ends with it: from
-    /// here on, the handlers of [`interrupt_flags`] only record a signal until the process
-    /// ends — except while standard output or a device is written, when one ends it at once
-    /// (a reader that stopped reading must not hold the process) — so a signal that comes
-    /// once the files are in place cannot end the process as if nothing had been written
-    /// (with 128 + its number, which says that no destination changed); the caller ends it
-    /// with its own result. [`Error::Interrupted`], with nothing put in place, if a signal
-    /// was recorded before.
+    /// [`OutputSet::commit`] for the last set of a process whose work ends with it, so that
+    /// a signal that comes once files are being put in place does not end the process as if
+    /// nothing had been written (with 128 + its number, which says that no destination
+    /// changed): with the handlers of [`interrupt_flags`], from here on a signal is only
+    /// recorded (and no longer [`InterruptFlags::recorded`]) while the files are renamed,
+    /// then ends the process with success once they are in place (`finished`), but with
+    /// 128 + its number while standard output or a device is written (a reader that stopped
+    /// reading must not hold the process). [`Error::Interrupted`], with nothing put in place,
+    /// if a signal was recorded before. No other set should be made after it.
     pub fn commit_final(self) -> Result<(), Error> {
         {
             let _list = pending();
             // Cleared, then a recorded signal looked for (the order `Temp::create` follows):
             // a handler either reads the flag cleared or its signal is found here.
-            FINISHING.store(true, Ordering::SeqCst);
+            LAST_COMMIT.store(CHECKING, Ordering::SeqCst);
             NO_TEMPORARIES.store(false, Ordering::SeqCst);
         }
         check_caught()?;
+        LAST_COMMIT.store(PUTTING, Ordering::SeqCst);
         self.put_in_place(true)
     }
 
     /// Renames the written outputs into place, then writes standard output and devices;
-    /// `finishing`: [`OutputSet::commit_final`]'s, whose flag is set only while those are
-    /// written.
+    /// `finishing`: [`OutputSet::commit_final`]'s (see there).
     fn put_in_place(self, finishing: bool) -> Result<(), Error> {
         let mut streams = Vec::new();
         for entry in self.entries {
@@ -508,13 +550,19 @@ impl OutputSet {
                 Sink::Stdout { bytes: None } | Sink::InPlace { bytes: None, .. } => {}
             }
         }
-        if finishing && !streams.is_empty() {
-            NO_TEMPORARIES.store(true, Ordering::SeqCst);
+        if !finishing {
+            return write_streams(streams);
         }
+        // Every file in place: from here on a signal ends the process with success — but
+        // while standard output and devices are written (a reader that stopped reading
+        // must not hold it), with 128 + the signal (its handler comes first).
+        FINISHED.store(true, Ordering::SeqCst);
+        if streams.is_empty() {
+            return Ok(());
+        }
+        NO_TEMPORARIES.store(true, Ordering::SeqCst);
         let written = write_streams(streams);
-        if finishing {
-            NO_TEMPORARIES.store(false, Ordering::SeqCst);
-        }
+        NO_TEMPORARIES.store(false, Ordering::SeqCst);
         written
     }
 }

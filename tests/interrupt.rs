@@ -88,11 +88,16 @@ fn a_recorded_signal_stops_the_set_at_its_next_step() {
     // None recorded: put in place, and from then on a handler only records a signal (the
     // run is over; the process must not end as if nothing had been written).
     flags.caught.store(0, Ordering::SeqCst);
+    assert!(!flags.finished.load(Ordering::SeqCst));
     written(&a, &b).commit_final().unwrap();
     assert_eq!(names(d), ["a.svg", "b.json"]);
     assert_eq!(std::fs::read(&a).unwrap(), b"<svg/>");
+    // A handler now ends the process with success; a signal recorded stops nothing.
     assert!(!idle());
-    // Later sets neither set it again.
+    assert!(flags.finished.load(Ordering::SeqCst));
+    flags.caught.store(15, Ordering::SeqCst);
+    assert_eq!(flags.recorded(), None);
+    // Later sets (there should be none) neither set it again.
     let mut outs = OutputSet::new(None);
     let ia = outs.add(&a).unwrap();
     outs.write(ia, b"x".to_vec()).unwrap();

@@ -44,9 +44,9 @@ Exit codes:
      file is changed
   2  bad command-line arguments (also: two outputs to the same place, an output name
      without a known extension, several inputs or a folder without --out-dir)
-  128+N  stopped by signal N (130 Ctrl-C, 143 SIGTERM), no output file changed (a signal
-     while standard output is written: the files are in place; once they are, the run
-     finishes with 0)";
+  128+N  stopped by signal N (130 Ctrl-C, 143 SIGTERM), no output file changed (but with
+     --out-dir the finished inputs' files stay, and a signal while standard output is
+     written leaves the files in place; one after the files are in place ends with 0)";
 
 /// Vectorize a bitmap by Digital Level Layers: every border of the shapes is cut into
 /// pieces, each described exactly by a digital line, circle, conic or polynomial layer.
