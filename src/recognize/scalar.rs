@@ -1,6 +1,6 @@
 //! The number types the GJK variant runs on: `f64` (fast) and exact rationals (fallback).
 
-use super::simplex::{affine_min_norm_by_elimination, affine_min_norm_weights_exact, Vertex, Work};
+use super::simplex::{affine_min_norm_f64, affine_min_norm_weights_exact, Vertex, Work};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -93,7 +93,7 @@ impl Scalar for f64 {
         f64::is_finite(*self)
     }
     fn affine_min_norm_into(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
-        affine_min_norm_by_elimination(vertices, eps, work)
+        affine_min_norm_f64(vertices, eps, work)
     }
     /// The built-in models' lengths (line 2, circle 3, conic 5, cubic 9) unrolled: the
     /// same products summed in the same order (the minor cycle's Gram matrices are made of

@@ -344,6 +344,93 @@ pub(crate) fn affine_min_norm_by_elimination<T: Scalar>(
     work.mu.iter().all(|x| x.is_finite())
 }
 
+/// [`affine_min_norm_by_elimination`] in `f64` on the stack, for the built-in models'
+/// dimensions (at most 9, the cubic's, with one vertex more): the same operations in the
+/// same order (the same [`Scalar::dot`], the same pivots), so the same weights to the bit;
+/// its `Vec` indexing was most of the minor cycle's time. Larger simplices go to the general
+/// one.
+pub(crate) fn affine_min_norm_f64(
+    vertices: &[Vertex<f64>],
+    eps: f64,
+    work: &mut Work<f64>,
+) -> bool {
+    let k = vertices.len();
+    let n = vertices.first().map_or(0, |v| v.point.len());
+    let m = k.saturating_sub(1);
+    // (Arrays no larger than needed: zeroing them was a fifth of the work in 5-D.)
+    match (m, n) {
+        (0, _) => affine_min_norm_by_elimination(vertices, eps, work),
+        (..=3, ..=3) => on_stack::<3, 4>(vertices, eps, work),
+        (..=5, ..=5) => on_stack::<5, 6>(vertices, eps, work),
+        (..=10, ..=10) => on_stack::<10, 11>(vertices, eps, work),
+        _ => affine_min_norm_by_elimination(vertices, eps, work),
+    }
+}
+
+/// [`affine_min_norm_f64`] with at most `C` edges and coordinates (`W = C + 1`).
+fn on_stack<const C: usize, const W: usize>(
+    vertices: &[Vertex<f64>],
+    eps: f64,
+    work: &mut Work<f64>,
+) -> bool {
+    let w0 = &vertices[0].point[..];
+    let (n, m) = (w0.len(), vertices.len() - 1);
+    let mut edges = [[0.0f64; C]; C];
+    for (e, v) in edges.iter_mut().zip(&vertices[1..]) {
+        for ((ec, a), b) in e.iter_mut().zip(&v.point).zip(w0) {
+            *ec = a - b;
+        }
+    }
+    // The augmented system [EᵀE | −Eᵀw0], EᵀE's products each once.
+    let mut a = [[0.0f64; W]; C];
+    for i in 0..m {
+        for j in i..m {
+            let g = <f64 as Scalar>::dot(&edges[i][..n], &edges[j][..n]);
+            a[j][i] = g;
+            a[i][j] = g;
+        }
+        a[i][m] = -<f64 as Scalar>::dot(&edges[i][..n], w0);
+    }
+    let scale = (0..m).fold(0.0f64, |s, i| if a[i][i] > s { a[i][i] } else { s });
+    let pivot_tol = <f64 as Scalar>::tolerance(&scale, eps);
+    // Gaussian elimination with partial pivoting, as `solve_in_place`.
+    for col in 0..m {
+        let mut best = col;
+        for r in col + 1..m {
+            if a[r][col].abs() > a[best][col].abs() {
+                best = r;
+            }
+        }
+        if a[best][col].abs() <= pivot_tol || a[best][col] == 0.0 {
+            return false;
+        }
+        a.swap(col, best);
+        let pivot = a[col];
+        for row in a[col + 1..m].iter_mut() {
+            if row[col] == 0.0 {
+                continue;
+            }
+            let f = row[col] / pivot[col];
+            for (e, v) in row[col..=m].iter_mut().zip(&pivot[col..=m]) {
+                *e -= f * v;
+            }
+        }
+    }
+    let mut t = [0.0f64; C];
+    for r in (0..m).rev() {
+        let mut s = a[r][m];
+        for c in r + 1..m {
+            s -= a[r][c] * t[c];
+        }
+        t[r] = s / a[r][r];
+    }
+    let sum_t = t[..m].iter().fold(0.0, |s, x| s + x);
+    work.mu.clear();
+    work.mu.push(1.0 - sum_t);
+    work.mu.extend_from_slice(&t[..m]);
+    work.mu.iter().all(|x| x.is_finite())
+}
+
 /// The weights of [`affine_min_norm_by_elimination`] in exact arithmetic, without a single
 /// rational reduction in the elimination: the vertices are brought to integers (multiplied
 /// by the lcm of their denominators, which leaves `μ` unchanged), the reduced system `(EᵀE) t = −Eᵀw₀` is solved
@@ -532,6 +619,32 @@ mod tests {
             let got = affine_min_norm_weights_exact(&s.vertices);
             let mut work = Work::default();
             let want = affine_min_norm_by_elimination(&s.vertices, 0.0, &mut work).then_some(work.mu);
+            proptest::prop_assert_eq!(got, want);
+        }
+
+        /// The stack version gives the general one's weights to the bit (or fails with it),
+        /// in the dimensions it unrolls and others, independent vertices or not, up to one
+        /// more than it holds (which goes to the general one).
+        #[test]
+        fn stack_weights_are_the_general_ones(
+            dim in 1usize..=11,
+            raw in proptest::collection::vec(proptest::collection::vec(-1e6f64..1e6, 11), 1..=12),
+            repeat in proptest::prelude::any::<bool>(),
+            eps in proptest::sample::select(vec![0.0, 1e-12, 1e-3]),
+        ) {
+            let mut vertices: Vec<Vertex<f64>> = raw
+                .iter()
+                .enumerate()
+                .map(|(i, p)| Vertex { point: p[..dim].to_vec(), tag: Tag::explicit(i) })
+                .collect();
+            if repeat && vertices.len() > 2 {
+                // Affinely dependent: a vertex between two others.
+                let mid: Vec<f64> = vertices[0].point.iter().zip(&vertices[1].point).map(|(a, b)| 0.5 * (a + b)).collect();
+                vertices[2].point = mid;
+            }
+            let (mut w1, mut w2) = (Work::default(), Work::default());
+            let got = affine_min_norm_f64(&vertices, eps, &mut w1).then(|| w1.mu.iter().map(|v| v.to_bits()).collect::<Vec<_>>());
+            let want = affine_min_norm_by_elimination(&vertices, eps, &mut w2).then(|| w2.mu.iter().map(|v| v.to_bits()).collect::<Vec<_>>());
             proptest::prop_assert_eq!(got, want);
         }
     }
