@@ -212,11 +212,15 @@ pub struct Outliers {
 /// assert_eq!((right.len(), left.len()), (3, 3));
 /// ```
 pub fn piece_outliers(points: &[Pixel], first: usize, last: usize, rule: OutlierRule) -> Outliers {
-    let mut right = Vec::new();
-    let mut left = Vec::new();
     if last >= points.len() || last < first + 2 {
-        return Outliers { right, left };
+        return Outliers {
+            right: Vec::new(),
+            left: Vec::new(),
+        };
     }
+    // About one neighbour per point on each side.
+    let mut right = Vec::with_capacity(last + 1 - first);
+    let mut left = Vec::with_capacity(last + 1 - first);
     let mut seen = StretchSets::of(&points[first..=last]);
     for k in first + 1..last {
         let Some(sides) = neighbour_sides(points[k - 1], points[k], points[k + 1]) else {
@@ -445,23 +449,34 @@ pub(crate) fn decompose_reporting(
     let greedy_memos: Vec<Mutex<GreedyMemo>> = (0..rayon::current_num_threads().max(1))
         .map(|_| Mutex::default())
         .collect();
+    // A recognizer per worker thread too, which keeps its buffers from job to job (one per
+    // job grew its sets' vectors anew: 0.7% of a glyph's instructions in `realloc`). It is
+    // reset for every piece; a poisoned one is made afresh.
+    let recognizers: Vec<Mutex<Option<Recognizer>>> =
+        (0..greedy_memos.len()).map(|_| Mutex::default()).collect();
     let results: Vec<(Vec<Rotated>, Stats)> = order
         .par_chunks(per_task)
         .with_max_len(1)
-        .map_init(
-            || Recognizer::new(basis.clone(), &[0, 0]),
-            |rec, chunk| match rec.as_mut() {
+        .map(|chunk| {
+            // Each worker locks its own, and nothing here runs rayon jobs: no waiting.
+            let worker = rayon::current_thread_index().unwrap_or(0) % greedy_memos.len();
+            let mut slot = recognizers[worker].lock().unwrap_or_else(|e| {
+                let mut slot = e.into_inner();
+                *slot = None;
+                slot
+            });
+            if slot.is_none() {
+                *slot = Recognizer::new(basis.clone(), &[0, 0]);
+            }
+            match slot.as_mut() {
                 Some(rec) => {
                     let before = rec.stats();
                     // Tiny contours repeat (noise, halftones): each shape once per task (per
                     // worker instead: no fewer instructions on noise).
                     let mut memo = shapes::PieceMemo::default();
                     let pieces = {
-                        // Each worker locks its own, and nothing here runs rayon jobs: no
-                        // waiting. (A memo whose holder panicked holds pieces as exact as
-                        // any.) Released before `done`, which is the caller's.
-                        let worker =
-                            rayon::current_thread_index().unwrap_or(0) % greedy_memos.len();
+                        // (A memo whose holder panicked holds pieces as exact as any.)
+                        // Released before `done`, which is the caller's.
                         let mut greedy = greedy_memos[worker]
                             .lock()
                             .unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -484,8 +499,8 @@ pub(crate) fn decompose_reporting(
                     done(n);
                     (vec![(0, Vec::new()); chunk.len()], Stats::default())
                 }
-            },
-        )
+            }
+        })
         .collect();
     let mut contours = contours;
     let mut stats = Stats::default();
