@@ -412,7 +412,7 @@ fn exact_path(
         match unused {
             None => {
                 if let Some((a, b)) = unused_run.take() {
-                    stretches.extend(st.polygon(a, b));
+                    st.polygon_into(a, b, &mut stretches);
                 }
                 stretches.push(s);
             }
@@ -431,7 +431,7 @@ fn exact_path(
         }
     }
     if let Some((a, b)) = unused_run {
-        stretches.extend(st.polygon(a, b));
+        st.polygon_into(a, b, &mut stretches);
     }
     let mut cracked = vec![false; stretches.len()];
     let mut keep_bridge = vec![false; stretches.len()];

@@ -190,12 +190,21 @@ impl<'a> Stretcher<'a> {
     /// largest-margin line. A single pixel always is such a segment, so every point is
     /// covered.
     pub fn polygon(&mut self, first: usize, last: usize) -> Vec<Stretch> {
+        let mut out = Vec::new();
+        self.polygon_into(first, last, &mut out);
+        out
+    }
+
+    /// [`Stretcher::polygon`] appended to `out`: a stretch is some 500 bytes, and moving
+    /// them from a vector of their own into the caller's cost 0.4% of 400² noise's
+    /// instructions.
+    pub fn polygon_into(&mut self, first: usize, last: usize, out: &mut Vec<Stretch>) {
         let points = self.points;
         let n = points.len();
         let xy = |p: Pixel| [i64::from(p.x), i64::from(p.y)];
-        // (Segments of two points or more, mostly: a stretch is some 500 bytes, and growing
-        // the vector copied them, 0.5% of 1000² noise's instructions.)
-        let mut out = Vec::with_capacity(((last + 2).saturating_sub(first) / 2).min(32));
+        // (Segments of two points or more, mostly: growing the vector copied them, 0.5% of
+        // 1000² noise's instructions.)
+        out.reserve(((last + 2).saturating_sub(first) / 2).min(32));
         let mut i = first;
         let [mut in_piece, mut high, mut low] = std::mem::take(&mut self.scratch);
         let [mut low_list, mut high_list] = std::mem::take(&mut self.sides);
@@ -290,7 +299,6 @@ impl<'a> Stretcher<'a> {
         self.scratch = [in_piece, high, low];
         self.sides = [low_list, high_list];
         self.separation = sep;
-        out
     }
 
     /// The stretch of the straight segment `first..=last` along the line of largest margin
@@ -418,13 +426,13 @@ impl<'a> Stretcher<'a> {
                 if half.drawing == Drawing::Straight || a == b {
                     out.push(half);
                 } else {
-                    out.extend(self.polygon(a, b));
+                    self.polygon_into(a, b, &mut out);
                 }
             }
             return Some(out);
         }
         let mut out = self.polygon(s.first, mid);
-        out.extend(self.polygon(mid + 1, s.last));
+        self.polygon_into(mid + 1, s.last, &mut out);
         Some(out)
     }
 }
