@@ -458,48 +458,42 @@ pub(crate) fn decompose_reporting(
         .par_chunks(per_task)
         .with_max_len(1)
         .map(|chunk| {
-            // Each worker locks its own, and nothing here runs rayon jobs: no waiting.
+            // Each worker locks its own, and nothing here runs rayon jobs: no waiting. Both
+            // locks are released before `done`, which is the caller's.
             let worker = rayon::current_thread_index().unwrap_or(0) % greedy_memos.len();
-            let mut slot = recognizers[worker].lock().unwrap_or_else(|e| {
-                let mut slot = e.into_inner();
-                *slot = None;
-                slot
-            });
-            if slot.is_none() {
-                *slot = Recognizer::new(basis.clone(), &[0, 0]);
-            }
-            match slot.as_mut() {
-                Some(rec) => {
+            let found = {
+                let mut slot = recognizers[worker].lock().unwrap_or_else(|e| {
+                    let mut slot = e.into_inner();
+                    *slot = None;
+                    slot
+                });
+                if slot.is_none() {
+                    *slot = Recognizer::new(basis.clone(), &[0, 0]);
+                }
+                slot.as_mut().map(|rec| {
                     let before = rec.stats();
                     // Tiny contours repeat (noise, halftones): each shape once per task (per
                     // worker instead: no fewer instructions on noise).
                     let mut memo = shapes::PieceMemo::default();
-                    let pieces = {
-                        // (A memo whose holder panicked holds pieces as exact as any.)
-                        // Released before `done`, which is the caller's.
-                        let mut greedy = greedy_memos[worker]
-                            .lock()
-                            .unwrap_or_else(std::sync::PoisonError::into_inner);
-                        chunk
-                            .iter()
-                            .map(|&k| {
-                                let c = &contours[k];
-                                memo.pieces(c, wraps(c), rec, |rec| one(c, rec, &mut greedy))
-                            })
-                            .collect()
-                    };
-                    let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
-                    done(n);
+                    // (A memo whose holder panicked holds pieces as exact as any.)
+                    let mut greedy = greedy_memos[worker]
+                        .lock()
+                        .unwrap_or_else(std::sync::PoisonError::into_inner);
+                    let pieces: Vec<Rotated> = chunk
+                        .iter()
+                        .map(|&k| {
+                            let c = &contours[k];
+                            memo.pieces(c, wraps(c), rec, |rec| one(c, rec, &mut greedy))
+                        })
+                        .collect();
                     let mut stats = &rec.stats() - &before;
                     stats += memo.copied_stats();
                     (pieces, stats)
-                }
-                None => {
-                    let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
-                    done(n);
-                    (vec![(0, Vec::new()); chunk.len()], Stats::default())
-                }
-            }
+                })
+            };
+            let n = finished.fetch_add(chunk.len(), Ordering::Relaxed) + chunk.len();
+            done(n);
+            found.unwrap_or_else(|| (vec![(0, Vec::new()); chunk.len()], Stats::default()))
         })
         .collect();
     let mut contours = contours;
