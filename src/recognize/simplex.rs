@@ -373,8 +373,11 @@ fn on_stack<const C: usize, const W: usize>(
     eps: f64,
     work: &mut Work<f64>,
 ) -> bool {
+    // (Cleared first, as the general one does, whatever the answer.)
+    work.mu.clear();
     let w0 = &vertices[0].point[..];
     let (n, m) = (w0.len(), vertices.len() - 1);
+    debug_assert!(vertices.iter().all(|v| v.point.len() == n));
     let mut edges = [[0.0f64; C]; C];
     for (e, v) in edges.iter_mut().zip(&vertices[1..]) {
         for ((ec, a), b) in e.iter_mut().zip(&v.point).zip(w0) {
@@ -425,7 +428,6 @@ fn on_stack<const C: usize, const W: usize>(
         t[r] = s / a[r][r];
     }
     let sum_t = t[..m].iter().fold(0.0, |s, x| s + x);
-    work.mu.clear();
     work.mu.push(1.0 - sum_t);
     work.mu.extend_from_slice(&t[..m]);
     work.mu.iter().all(|x| x.is_finite())
