@@ -146,7 +146,8 @@ fn check_caught() -> Result<(), Error> {
     }
 }
 
-/// Sets [`NO_TEMPORARIES`] again if `list` (the locked [`PENDING`]) is empty.
+/// Sets [`NO_TEMPORARIES`] again if `list` (the locked [`PENDING`]) is empty and no last
+/// commit has begun.
 fn settle(list: &[PathBuf]) {
     if list.is_empty() && LAST_COMMIT.load(Ordering::SeqCst) == RUNNING {
         NO_TEMPORARIES.store(true, Ordering::SeqCst);
@@ -162,7 +163,10 @@ fn forget(list: &mut Vec<PathBuf>, path: &Path) {
 /// Removes every temporary file of every [`OutputSet`] of the process and exits with `code`,
 /// without returning: for a thread that waits for signals (SIGINT, SIGTERM), or after
 /// [`Error::Interrupted`]. Not from a signal handler itself: it locks, allocates and calls
-/// `exit`. No output set can create or rename a temporary file once this has started.
+/// `exit`. No output set can create or rename a temporary file once this has started —
+/// but once the process' last commit ([`OutputSet::commit_final`]) has begun to put its
+/// files in place, it waits for the renames and exits with success (with `code` while
+/// standard output or a device is written), as the handlers of [`InterruptFlags`] do.
 ///
 /// ```
 /// // On a thread of its own (here with signal-hook's `iterator` feature):
