@@ -3,15 +3,15 @@
 //! Two conventions are offered (see [`Convention`]); both are iterative and run in time
 //! linear in the number of pixels plus the total contour length:
 //! - `moore`: the default convention, Moore-neighbour tracing of each component and hole;
-//! - `flood`: the bit-parallel span flood fill that finds the components and holes;
+//! - `runs`: the components and holes, from the rows' runs joined by a union–find;
 //! - `crack`: the IPOL convention, crack following as the article's reference code does;
 //! - `borders`: the borders between the regions of a colour image ([`BorderGraph`]), cut at
 //!   their junctions, for the partition layout.
 
 mod borders;
 mod crack;
-mod flood;
 mod moore;
+mod runs;
 #[cfg(test)]
 mod tests;
 

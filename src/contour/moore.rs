@@ -1,7 +1,7 @@
 //! Moore-neighbour tracing: the default convention's borders, one per 8-connected
-//! component and per hole, each found by the flood fill of [`super::flood`].
+//! component and per hole, each found by [`super::runs`].
 
-use super::flood::{flood, low_bits, Visited};
+use super::runs::component_starts;
 use super::{fg, Contour};
 use crate::bitmap::Mask;
 use crate::pixel::Pixel;
@@ -80,42 +80,26 @@ fn moore_trace(mask: &Mask, p0: Pixel, back0: usize) -> Vec<Pixel> {
 
 /// Traces [`super::Convention::Default`].
 pub(super) fn trace_default(mask: &Mask) -> Vec<Contour> {
-    let mut visited = Visited(Mask::new(mask.width(), mask.height()));
-    let mut stack = Vec::new();
-    let mut out = Vec::new();
-    let w = mask.width() as usize;
-    for y in 0..mask.height() as usize {
-        let base = y * w;
-        let mut x = 0;
-        while x < w {
-            // Skip visited pixels 64 at a time.
-            let k = (w - x).min(64);
-            let free = !visited.0.bits_at(base + x) & low_bits(k);
-            if free == 0 {
-                x += k;
-                continue;
-            }
-            x += free.trailing_zeros() as usize;
-            let p = Pixel::new(x as i32, y as i32);
-            let touches = flood(mask, &mut visited, p, &mut stack);
-            if fg(mask, p) {
-                // All of N, NW, NE and W precede p in raster order: background.
-                out.push(Contour {
-                    points: moore_trace(mask, p, DIR_N),
-                    hole: false,
-                    closed: true,
-                });
-            } else if !touches {
-                // A hole: the pixel above its first pixel is foreground (y > 0, and a
+    component_starts(mask)
+        .into_iter()
+        .map(|s| {
+            if s.hole {
+                // The pixel above a hole's first pixel is foreground (y > 0, and a
                 // background pixel there would belong to the same hole, earlier).
-                out.push(Contour {
-                    points: moore_trace(mask, Pixel::new(p.x, p.y - 1), DIR_S),
+                Contour {
+                    points: moore_trace(mask, Pixel::new(s.at.x, s.at.y - 1), DIR_S),
                     hole: true,
                     closed: true,
-                });
+                }
+            } else {
+                // All of N, NW, NE and W precede the first pixel in raster order:
+                // background.
+                Contour {
+                    points: moore_trace(mask, s.at, DIR_N),
+                    hole: false,
+                    closed: true,
+                }
             }
-            x += 1;
-        }
-    }
-    out
+        })
+        .collect()
 }

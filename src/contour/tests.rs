@@ -132,6 +132,19 @@ fn check_default(mask: &Mask) -> (usize, usize) {
     let mut seen_comps = HashSet::new();
     let mut seen_holes = HashSet::new();
     let mut covered = HashSet::new();
+    // Contours in raster order of their component's or hole's first pixel.
+    let firsts: Vec<(i32, i32)> = contours
+        .iter()
+        .map(|c| {
+            let p = c.points[0];
+            let p = if c.hole { Pixel::new(p.x, p.y + 1) } else { p };
+            (p.y, p.x)
+        })
+        .collect();
+    assert!(
+        firsts.windows(2).all(|w| w[0] < w[1]),
+        "contours out of raster order: {firsts:?}"
+    );
     for c in &contours {
         assert!(c.closed);
         let pts = &c.points;
@@ -416,10 +429,41 @@ fn arb_mask() -> impl Strategy<Value = Mask> {
     prop_oneof![noise, blobs]
 }
 
+/// Random masks wider than a word of the mask's bits (runs across words and rows that
+/// start inside a word): noise of any density, or a few bars.
+fn arb_wide_mask() -> impl Strategy<Value = Mask> {
+    (
+        60u32..=200,
+        1u32..=12,
+        0u32..=100,
+        any::<u64>(),
+        any::<bool>(),
+    )
+        .prop_map(|(w, h, density, seed, bars)| {
+            let mut s = seed | 1;
+            Mask::from_fn(w, h, |x, y| {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                if bars {
+                    // Runs of length ~density crossing words, shifted row by row.
+                    (x + 7 * y + (seed % 64) as u32) % (density + 2) < (density + 2) / 2
+                } else {
+                    (s % 100) < u64::from(density)
+                }
+            })
+        })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
     #[test]
     fn default_invariants(mask in arb_mask()) {
+        check_default(&mask);
+    }
+
+    #[test]
+    fn default_invariants_wide(mask in arb_wide_mask()) {
         check_default(&mask);
     }
 
