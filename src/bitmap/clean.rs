@@ -15,6 +15,7 @@
 //! diagonal pixel pairs by its turn policy instead, so the two can differ on diagonal
 //! contacts only (on the scan test case, 2089 contours against potrace's 2082 paths).
 
+use super::index::Index;
 use super::mask::Mask;
 
 /// What [`Mask::clean`] dropped.
@@ -55,38 +56,6 @@ const FOREGROUND: u8 = 1; // as u8::from(true)
 const OUTSIDE: u8 = 2;
 /// The region's pixels change value.
 const FLIP: u8 = 4;
-
-/// An index of a pixel or a region: `u32` when the image allows it (half the memory), else
-/// `u64`.
-trait Index: Copy + Eq {
-    const ZERO: Self;
-    fn new(i: usize) -> Self;
-    fn get(self) -> usize;
-}
-
-impl Index for u32 {
-    const ZERO: u32 = 0;
-    #[inline]
-    fn new(i: usize) -> u32 {
-        i as u32
-    }
-    #[inline]
-    fn get(self) -> usize {
-        self as usize
-    }
-}
-
-impl Index for u64 {
-    const ZERO: u64 = 0;
-    #[inline]
-    fn new(i: usize) -> u64 {
-        i as u64
-    }
-    #[inline]
-    fn get(self) -> usize {
-        self as usize
-    }
-}
 
 impl Mask {
     /// Drops every foreground component and every hole whose border encloses at most

@@ -19,6 +19,7 @@ mod band;
 mod clean;
 pub(crate) mod colour;
 mod grey;
+mod index;
 mod input;
 mod jpeg;
 mod load;
@@ -35,6 +36,7 @@ pub use colour::{
     Regions, MAX_COLOURS, OPAQUE_ALPHA,
 };
 pub use grey::Compat;
+pub(crate) use index::Index;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};
 #[cfg(test)]

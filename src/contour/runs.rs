@@ -6,7 +6,7 @@
 //! 3000² sample, all before any parallel work); the runs are read from the mask's bit rows
 //! 64 pixels at a time, and the work after that is linear in their number.
 
-use crate::bitmap::Mask;
+use crate::bitmap::{Index, Mask};
 use crate::pixel::Pixel;
 
 /// A component's first pixel in raster order (smallest `y`, then smallest `x`).
@@ -21,32 +21,43 @@ pub(super) struct Start {
 
 /// Every foreground component and every hole of `mask`, in raster order of their first
 /// pixels (background components touching the border are left out).
+///
+/// Takes 9 bytes a run (at most one a pixel) while it runs, with `u32` indices (`u64`
+/// ones, 13 bytes a run, for images of `u32::MAX` pixels or more), and 12 a start.
 pub(super) fn component_starts(mask: &Mask) -> Vec<Start> {
-    let runs = Runs::of(mask);
+    let pixels = u64::from(mask.width()) * u64::from(mask.height());
+    if pixels < u64::from(u32::MAX) {
+        starts_with::<u32>(mask)
+    } else {
+        starts_with::<u64>(mask)
+    }
+}
+
+/// [`component_starts`] with run indices of type `L` (every run index must fit).
+fn starts_with<L: Index>(mask: &Mask) -> Vec<Start> {
+    let runs = Runs::<L>::of(mask);
     let n = runs.start.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut parent: Vec<L> = (0..n).map(L::new).collect();
     for y in 1..runs.rows() {
         join_rows(&runs, y, &mut parent);
     }
     // Whether each component (at its root) touches the border.
-    let (w, h) = (mask.width(), mask.height() as usize);
+    let h = mask.height() as usize;
     let mut touches = vec![false; n];
     for y in 0..runs.rows() {
         let edge_row = y == 0 || y + 1 == h;
-        for i in runs.row[y]..runs.row[y + 1] {
-            let i = i as usize;
+        for i in runs.row[y].get()..runs.row[y + 1].get() {
             let (x0, x1) = runs.span(i, y);
-            if edge_row || x0 == 0 || x1 + 1 == w {
+            if edge_row || x0 == 0 || x1 + 1 == runs.width {
                 touches[find(&mut parent, i)] = true;
             }
         }
     }
     let mut starts = Vec::new();
     for y in 0..runs.rows() {
-        for i in runs.row[y]..runs.row[y + 1] {
-            let i = i as usize;
+        for i in runs.row[y].get()..runs.row[y + 1].get() {
             // The root of a component is its run of least index: its first in raster order.
-            if parent[i] as usize != i {
+            if parent[i].get() != i {
                 continue;
             }
             let value = runs.value(i);
@@ -66,24 +77,24 @@ pub(super) fn component_starts(mask: &Mask) -> Vec<Start> {
 const VALUE: u32 = 1 << 31;
 
 /// The maximal runs of equal pixels of every row, in raster order.
-struct Runs {
+struct Runs<L> {
     /// Each run's first `x`, [`VALUE`] set for foreground (widths stay below 2³¹).
     start: Vec<u32>,
     /// The index of the first run of each row, and the number of runs last.
-    row: Vec<u32>,
+    row: Vec<L>,
     /// The mask's width.
     width: u32,
 }
 
-impl Runs {
+impl<L: Index> Runs<L> {
     /// The runs of `mask`, found 64 pixels at a time: a run starts where a pixel differs
     /// from its left neighbour.
-    fn of(mask: &Mask) -> Runs {
+    fn of(mask: &Mask) -> Runs<L> {
         let (w, h) = (mask.width() as usize, mask.height() as usize);
         let mut start = Vec::new();
         let mut row = Vec::with_capacity(h + 1);
         for y in 0..h {
-            row.push(start.len() as u32);
+            row.push(L::new(start.len()));
             let base = y * w;
             let mut left = 0u64; // the pixel left of the word, in bit 0
             let mut x = 0;
@@ -104,7 +115,7 @@ impl Runs {
                 x += k;
             }
         }
-        row.push(start.len() as u32);
+        row.push(L::new(start.len()));
         Runs {
             start,
             row,
@@ -127,7 +138,7 @@ impl Runs {
     #[inline]
     fn span(&self, i: usize, y: usize) -> (u32, u32) {
         let x0 = self.start[i] & !VALUE;
-        let x1 = if i + 1 < self.row[y + 1] as usize {
+        let x1 = if i + 1 < self.row[y + 1].get() {
             (self.start[i + 1] & !VALUE) - 1
         } else {
             self.width - 1
@@ -148,9 +159,9 @@ fn low_bits(k: usize) -> u64 {
 
 /// Joins each run of row `y` with the runs of the same value of row `y − 1` it touches:
 /// sharing a column, or (foreground only) a corner.
-fn join_rows(runs: &Runs, y: usize, parent: &mut [u32]) {
-    let (mut i, end_above) = (runs.row[y - 1] as usize, runs.row[y] as usize);
-    for j in runs.row[y] as usize..runs.row[y + 1] as usize {
+fn join_rows<L: Index>(runs: &Runs<L>, y: usize, parent: &mut [L]) {
+    let (mut i, end_above) = (runs.row[y - 1].get(), runs.row[y].get());
+    for j in runs.row[y].get()..runs.row[y + 1].get() {
         let (b0, b1) = runs.span(j, y);
         let value = runs.value(j);
         // The columns of row y − 1 that touch the run.
@@ -174,11 +185,11 @@ fn join_rows(runs: &Runs, y: usize, parent: &mut [u32]) {
 
 /// The root of `i`'s set, halving the path on the way.
 #[inline]
-fn find(parent: &mut [u32], mut i: usize) -> usize {
-    while parent[i] as usize != i {
-        let grand = parent[parent[i] as usize];
+fn find<L: Index>(parent: &mut [L], mut i: usize) -> usize {
+    while parent[i].get() != i {
+        let grand = parent[parent[i].get()];
         parent[i] = grand;
-        i = grand as usize;
+        i = grand.get();
     }
     i
 }
@@ -186,11 +197,38 @@ fn find(parent: &mut [u32], mut i: usize) -> usize {
 /// Joins the sets of `a` and `b`: the root of least index becomes the root of both, so a
 /// set's root is always its least index.
 #[inline]
-fn union(parent: &mut [u32], a: usize, b: usize) {
+fn union<L: Index>(parent: &mut [L], a: usize, b: usize) {
     let (ra, rb) = (find(parent, a), find(parent, b));
     if ra < rb {
-        parent[rb] = ra as u32;
+        parent[rb] = L::new(ra);
     } else if rb < ra {
-        parent[ra] = rb as u32;
+        parent[ra] = L::new(rb);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The `u64` indices of images of `u32::MAX` pixels or more give the starts of the
+        /// `u32` ones (which the contour tests check against an independent labelling).
+        #[test]
+        fn wide_indices_give_the_same_starts(
+            w in 1u32..150,
+            h in 1u32..12,
+            density in 0u64..=100,
+            seed in any::<u64>(),
+        ) {
+            let mut s = seed | 1;
+            let mask = Mask::from_fn(w, h, |_, _| {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                s % 100 < density
+            });
+            prop_assert_eq!(starts_with::<u64>(&mask), starts_with::<u32>(&mask));
+        }
     }
 }
