@@ -229,6 +229,7 @@ fn flood<L: Index>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bitmap::random_mask;
     use crate::contour::{trace, Convention};
     use proptest::prelude::*;
     use std::collections::VecDeque;
@@ -348,16 +349,6 @@ mod tests {
                 .count() as u64
         };
         (out, dropped(true), dropped(false))
-    }
-
-    fn random_mask(w: u32, h: u32, seed: u64, density: u64) -> Mask {
-        let mut s = seed | 1;
-        Mask::from_fn(w, h, |_, _| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s % 100 < density
-        })
     }
 
     proptest! {

@@ -2,7 +2,7 @@
 
 /// An index of a pixel, a region or a run: `u32` when the image allows it (half the
 /// memory), else `u64`.
-pub(crate) trait Index: Copy + Eq + Ord {
+pub(crate) trait Index: Copy + Eq {
     /// Index 0.
     const ZERO: Self;
     /// `i` as an index (`i` must fit).

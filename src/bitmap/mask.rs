@@ -217,6 +217,19 @@ impl Mask {
     }
 }
 
+/// A `w` × `h` test mask of noise: each pixel foreground with probability `density` %
+/// (xorshift from `seed`), the same mask for the same arguments.
+#[cfg(test)]
+pub(crate) fn random_mask(w: u32, h: u32, seed: u64, density: u64) -> Mask {
+    let mut s = seed | 1;
+    Mask::from_fn(w, h, |_, _| {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        s % 100 < density
+    })
+}
+
 /// An 80 × 80 test mask: the 4 × 3 blob `bits` (row-major) at `(8, 8)` and again at a place
 /// derived from each offset, the copies at least 2 pixels apart and 8 from the border (for
 /// the tests of the per-shape memos of the decomposition and the outline, which draws

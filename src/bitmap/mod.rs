@@ -39,7 +39,7 @@ pub use grey::Compat;
 pub(crate) use index::Index;
 pub use input::{default_max_memory, parse_memory_size};
 pub use load::{load_memory, load_path, threshold_image, LoadOptions, Loaded};
-#[cfg(test)]
-pub(crate) use mask::repeated_blob;
 pub use mask::Mask;
+#[cfg(test)]
+pub(crate) use mask::{random_mask, repeated_blob};
 pub use otsu::{ParseThresholdError, Threshold};

@@ -209,6 +209,7 @@ fn union<L: Index>(parent: &mut [L], a: usize, b: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bitmap::random_mask;
     use proptest::prelude::*;
 
     proptest! {
@@ -221,13 +222,7 @@ mod tests {
             density in 0u64..=100,
             seed in any::<u64>(),
         ) {
-            let mut s = seed | 1;
-            let mask = Mask::from_fn(w, h, |_, _| {
-                s ^= s << 13;
-                s ^= s >> 7;
-                s ^= s << 17;
-                s % 100 < density
-            });
+            let mask = random_mask(w, h, seed, density);
             prop_assert_eq!(starts_with::<u64>(&mask), starts_with::<u32>(&mask));
         }
     }

@@ -2,7 +2,7 @@
 //! oracle below), on small cases, random masks and the samples.
 
 use super::*;
-use crate::bitmap::{load_path, Compat, LoadOptions, Threshold};
+use crate::bitmap::{load_path, random_mask, Compat, LoadOptions, Threshold};
 use proptest::prelude::*;
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
@@ -391,16 +391,8 @@ fn samples_default_convention() {
 
 /// Random small masks: noise, or a union of rectangles and discs.
 fn arb_mask() -> impl Strategy<Value = Mask> {
-    let noise =
-        (1u32..=24, 1u32..=24, 0u32..=100, any::<u64>()).prop_map(|(w, h, density, seed)| {
-            let mut s = seed | 1;
-            Mask::from_fn(w, h, |_, _| {
-                s ^= s << 13;
-                s ^= s >> 7;
-                s ^= s << 17;
-                (s % 100) < u64::from(density)
-            })
-        });
+    let noise = (1u32..=24, 1u32..=24, 0u64..=100, any::<u64>())
+        .prop_map(|(w, h, density, seed)| random_mask(w, h, seed, density));
     let blobs = (
         1u32..=24,
         1u32..=24,
