@@ -24,12 +24,12 @@ fn side(p: Pixel, d: u8) -> [Point; 2] {
     }
 }
 
-/// The crack corners of `cur` between `prev` and `next`: its sides facing the 4-neighbours on
-/// the right of the walk, counter-clockwise on screen from the side after `prev` to the side
-/// before `next`. A U-turn (`prev == next`) gives every side but the one facing them; `None`
-/// for `prev`/`next` (no neighbours: one-pixel contour) or non-adjacent input gives the whole
-/// square.
-fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut Vec<Point>) {
+/// The 8-directions from `cur` between `prev` and `next`, in the order [`crack_corners`]
+/// goes round (see there), in the first `count` entries: the even ones (0 right, 2 down,
+/// 4 left, 6 up) are the sides it draws.
+// (Inlined: it runs for every pixel of every crack polyline.)
+#[inline(always)]
+fn crack_sides(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>) -> ([u8; 8], usize) {
     // At most 7 directions (no allocation: this runs for every pixel of every junction).
     let mut dirs = [0u8; 8];
     let count = match (
@@ -51,6 +51,16 @@ fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut
             4
         }
     };
+    (dirs, count)
+}
+
+/// The crack corners of `cur` between `prev` and `next`: its sides facing the 4-neighbours on
+/// the right of the walk, counter-clockwise on screen from the side after `prev` to the side
+/// before `next`. A U-turn (`prev == next`) gives every side but the one facing them; `None`
+/// for `prev`/`next` (no neighbours: one-pixel contour) or non-adjacent input gives the whole
+/// square.
+fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut Vec<Point>) {
+    let (dirs, count) = crack_sides(prev, cur, next);
     for &d in dirs[..count].iter().filter(|&&d| d % 2 == 0) {
         for q in side(cur, d) {
             if out.last() != Some(&q) {
@@ -60,22 +70,66 @@ fn crack_corners(prev: Option<Pixel>, cur: Pixel, next: Option<Pixel>, out: &mut
     }
 }
 
+/// The neighbours of pixel `i` along a closed contour of `points` (`None` for a one-pixel
+/// contour).
+fn neighbours(points: &[Pixel], i: usize) -> (Option<Pixel>, Option<Pixel>) {
+    let n = points.len();
+    if n == 1 {
+        (None, None)
+    } else {
+        (Some(points[(i + n - 1) % n]), Some(points[(i + 1) % n]))
+    }
+}
+
 /// Crack corners of the pixels `first..=last` of a closed contour.
 pub(crate) fn crack_polyline(points: &[Pixel], first: usize, last: usize) -> Vec<Point> {
+    let mut out = Vec::new();
+    crack_polyline_into(points, first, last, &mut out);
+    out
+}
+
+/// [`crack_polyline`] into `out`'s buffer (cleared first).
+pub(crate) fn crack_polyline_into(
+    points: &[Pixel],
+    first: usize,
+    last: usize,
+    out: &mut Vec<Point>,
+) {
+    out.clear();
     let n = points.len();
     if n == 0 {
-        return Vec::new();
+        return;
     }
-    let mut out = Vec::with_capacity(4 * (last.min(n - 1) + 1).saturating_sub(first) + 4);
+    out.reserve(4 * (last.min(n - 1) + 1).saturating_sub(first) + 4);
     for i in first..=last.min(n - 1) {
-        let (prev, next) = if n == 1 {
-            (None, None)
-        } else {
-            (Some(points[(i + n - 1) % n]), Some(points[(i + 1) % n]))
-        };
-        crack_corners(prev, points[i], next, &mut out);
+        let (prev, next) = neighbours(points, i);
+        crack_corners(prev, points[i], next, out);
     }
-    out
+}
+
+/// The first point of [`crack_polyline`]`(points, first, last)`, without building it: the
+/// first corner of the first of those pixels that has a crack. `None` when none has.
+pub(crate) fn first_crack_corner(points: &[Pixel], first: usize, last: usize) -> Option<Point> {
+    let last = last.min(points.len().checked_sub(1)?);
+    (first..=last).find_map(|i| {
+        let (prev, next) = neighbours(points, i);
+        let (dirs, count) = crack_sides(prev, points[i], next);
+        let d = dirs[..count].iter().find(|&&d| d % 2 == 0)?;
+        Some(side(points[i], *d)[0])
+    })
+}
+
+/// The last point of [`crack_polyline`]`(points, first, last)`, without building it: the
+/// last corner of the last of those pixels that has a crack (a corner the polyline drops as
+/// a repeat equals the one before it). `None` when none has.
+pub(crate) fn last_crack_corner(points: &[Pixel], first: usize, last: usize) -> Option<Point> {
+    let last = last.min(points.len().checked_sub(1)?);
+    (first..=last).rev().find_map(|i| {
+        let (prev, next) = neighbours(points, i);
+        let (dirs, count) = crack_sides(prev, points[i], next);
+        let d = dirs[..count].iter().rev().find(|&&d| d % 2 == 0)?;
+        Some(side(points[i], *d)[1])
+    })
 }
 
 /// True when the pieces cover `0..n` consecutively.
@@ -200,5 +254,48 @@ impl Cracks {
         }
         pts.push(e);
         Some(pts)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bitmap::random_mask;
+    use crate::contour::{trace, Convention};
+
+    #[test]
+    fn end_corners_are_the_ends_of_the_polyline() {
+        // Every range of every contour of noisy masks (one-pixel contours, U-turns, pixels
+        // without a crack of their own) and of both conventions.
+        let mut ranges = 0;
+        for seed in 1..=6 {
+            let mask = random_mask(24, 18, seed, 35 + 5 * seed);
+            for convention in [Convention::Default, Convention::Ipol] {
+                for c in trace(&mask, convention) {
+                    let n = c.points.len();
+                    for first in 0..n {
+                        for last in first..n.min(first + 12) {
+                            let poly = crack_polyline(&c.points, first, last);
+                            assert_eq!(
+                                first_crack_corner(&c.points, first, last),
+                                poly.first().copied()
+                            );
+                            assert_eq!(
+                                last_crack_corner(&c.points, first, last),
+                                poly.last().copied()
+                            );
+                            let mut into = vec![Point::ZERO; 3];
+                            crack_polyline_into(&c.points, first, last, &mut into);
+                            assert_eq!(into, poly);
+                            ranges += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(ranges > 5_000, "{ranges}");
+        // Empty ranges and contours give none.
+        assert_eq!(first_crack_corner(&[], 0, 0), None);
+        assert_eq!(last_crack_corner(&[Pixel { x: 1, y: 1 }], 1, 0), None);
     }
 }

@@ -24,7 +24,7 @@
 //! pixels is drawn along its cracks in this drawing and reported, to be refined.
 
 use super::builder::Builder;
-use super::cracks::{centre, crack_polyline};
+use super::cracks::{centre, crack_polyline_into, first_crack_corner, last_crack_corner};
 use super::path::ContourPath;
 use super::stretch::{Drawing, Stretch};
 use super::vertices::{separates, shared_vertex, Sides};
@@ -126,7 +126,7 @@ pub(crate) fn build(
     let mut b = Builder::with_capacity(grid, 2 * m + 4);
     let mut use_curve: Vec<bool> = stretches.iter().map(|s| s.poly.is_some()).collect();
     let mut failed = Vec::new();
-    let pixel_cracks = |i: usize| crack_polyline(points, i, i);
+
     // A stretch whose both end pixels are cracked and that has no more than one pixel
     // between them is drawn along its cracks.
     for k in 0..m {
@@ -134,7 +134,9 @@ pub(crate) fn build(
             use_curve[k] = false;
         }
     }
-    let cracks = |k: usize| crack_polyline(points, stretches[k].first, stretches[k].last);
+    // The first and last crack corners of stretch `k` (without its crack polyline).
+    let first_corner = |k: usize| first_crack_corner(points, stretches[k].first, stretches[k].last);
+    let last_corner = |k: usize| last_crack_corner(points, stretches[k].first, stretches[k].last);
     // Junction j joins stretch j (its end) and stretch (j + 1) % m (its start).
     let mut ends = vec![Point::ZERO; m];
     let mut starts = vec![Point::ZERO; m];
@@ -150,11 +152,9 @@ pub(crate) fn build(
             let mid = centre(points[a]).midpoint(centre(points[bi]));
             let (end_target, start_target) = if cracked[j] {
                 out.joins.cracked += 1;
-                let ca = pixel_cracks(a);
-                let cb = pixel_cracks(bi);
                 (
-                    ca.first().copied().unwrap_or(mid),
-                    cb.last().copied().unwrap_or(mid),
+                    first_crack_corner(points, a, a).unwrap_or(mid),
+                    last_crack_corner(points, bi, bi).unwrap_or(mid),
                 )
             } else {
                 if let (true, true, Some(pa), Some(pb)) =
@@ -188,14 +188,14 @@ pub(crate) fn build(
                     Some(x) => ends[j] = x,
                     None => lost.push(j),
                 },
-                _ => ends[j] = cracks(j).last().copied().unwrap_or(mid),
+                _ => ends[j] = last_corner(j).unwrap_or(mid),
             }
             match (&sk.poly, use_curve[k]) {
                 (Some(pb), true) => match project(sk.id, pb, start_target) {
                     Some(x) => starts[k] = x,
                     None => lost.push(k),
                 },
-                _ => starts[k] = cracks(k).first().copied().unwrap_or(mid),
+                _ => starts[k] = first_corner(k).unwrap_or(mid),
             }
         }
         if lost.is_empty() {
@@ -264,20 +264,26 @@ pub(crate) fn build(
             out.joins.bridged -= 1;
         }
     }
+    // The cracks of pixels `first..=last`, drawn through one buffer.
+    let mut crack_buf: Vec<Point> = Vec::new();
+    let mut draw_cracks = |first: usize, last: usize, b: &mut Builder| {
+        crack_polyline_into(points, first, last, &mut crack_buf);
+        b.polyline(&crack_buf);
+    };
     for (k, s) in stretches.iter().enumerate() {
         // The segments of polygons (and the bridges into them) may become cubics.
         b.smooth = smooth && s.drawing == Drawing::Straight;
         let poly = match (&s.poly, use_curve[k]) {
             (Some(p), true) => p,
             _ => {
-                b.polyline(&cracks(k));
+                draw_cracks(s.first, s.last, &mut b);
                 continue;
             }
         };
         let head = cracked[(k + m - 1) % m];
         let tail = cracked[k];
         if head {
-            b.polyline(&pixel_cracks(s.first));
+            draw_cracks(s.first, s.first, &mut b);
         }
         let (from, to) = (starts[k], ends[k]);
         b.goto(from);
@@ -304,12 +310,12 @@ pub(crate) fn build(
                 }
                 None => {
                     failed.push(k);
-                    b.polyline(&cracks(k));
+                    draw_cracks(s.first, s.last, &mut b);
                 }
             }
         }
         if tail {
-            b.polyline(&pixel_cracks(s.last));
+            draw_cracks(s.last, s.last, &mut b);
         }
     }
     let (start, commands, tags) = b.into_tagged();

@@ -17,7 +17,7 @@
 //! 1/64 px either way too, as the render check moves it. The render check has the last
 //! word.
 
-use super::cracks::{centre, crack_polyline};
+use super::cracks::{centre, first_crack_corner, last_crack_corner};
 use super::ROBUST_SHIFT;
 use crate::decompose::neighbour_sides;
 use crate::pixel::Pixel;
@@ -168,8 +168,8 @@ pub(crate) fn shared_vertex(
     snap: impl Fn(Point) -> Point,
 ) -> Option<Point> {
     let corner = match (
-        crack_polyline(points, a, a).last().copied(),
-        crack_polyline(points, b, b).first().copied(),
+        last_crack_corner(points, a, a),
+        first_crack_corner(points, b, b),
     ) {
         (Some(p), Some(q)) => Some(p.midpoint(q)),
         _ => None,
