@@ -254,6 +254,11 @@ pub fn one(
         };
         summary(&name, &v, options, start)
     };
+    // The process ends after its last input: the results are left to the system instead of
+    // being freed piece by piece (0.6% of the instructions on 400² noise).
+    if last {
+        std::mem::forget(v);
+    }
     Ok(Finished { report, summary })
 }
 
