@@ -97,6 +97,18 @@ pub(crate) struct LinearMap {
 }
 
 impl LinearMap {
+    /// Makes this `diag(scale)`, in place when it is a diagonal map of that dimension.
+    pub fn set_diagonal(&mut self, scale: &[f64]) {
+        let n = scale.len();
+        if !(self.diagonal && self.n == n) {
+            *self = LinearMap::diagonal(scale);
+            return;
+        }
+        for (i, s) in scale.iter().enumerate() {
+            self.t[i * n + i] = *s;
+        }
+    }
+
     /// `T = diag(scale)`.
     pub fn diagonal(scale: &[f64]) -> LinearMap {
         let n = scale.len();

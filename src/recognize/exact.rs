@@ -88,11 +88,15 @@ pub(crate) fn round_to_certificate(
     let needed = (err / margin * ymax).log2().ceil();
     let k_hi = (needed + 3.0).clamp(0.0, 61.0) as i32;
     let k_lo = (needed - 6.0).clamp(0.0, 61.0) as i32;
-    let mut last: Option<Vec<i64>> = None;
+    // Two buffers, swapped: the rounding at this scale and the last one tried.
+    let mut a: Vec<i64> = Vec::with_capacity(y.len());
+    let mut last: Vec<i64> = Vec::new();
+    let mut tried = false;
     for k in k_lo..=k_hi {
         let t = (k as f64).exp2() / ymax;
-        let a: Vec<i64> = y.iter().map(|v| (v * t).round() as i64).collect();
-        if a.iter().all(|&v| v == 0) || last.as_ref() == Some(&a) {
+        a.clear();
+        a.extend(y.iter().map(|v| (v * t).round() as i64));
+        if a.iter().all(|&v| v == 0) || (tried && last == a) {
             continue;
         }
         // Cheap filter first: the tightest points of D (the simplex) must be positive.
@@ -103,7 +107,8 @@ pub(crate) fn round_to_certificate(
                 return Some(reduce_by_gcd(a, e));
             }
         }
-        last = Some(a);
+        std::mem::swap(&mut a, &mut last);
+        tried = true;
     }
     None
 }

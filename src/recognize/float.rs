@@ -27,6 +27,16 @@ pub(super) const FLOAT_PARAMS: GjkParams = GjkParams {
     first_separation: true,
 };
 
+/// Buffers of [`float_decide`], kept by the recognizer from query to query.
+#[derive(Debug, Default)]
+pub(super) struct FloatScratch {
+    /// The simplex vertices as exact points of `D` (only the first `simplex.len()` entries
+    /// are meaningful; longer is kept for reuse).
+    diffs: Vec<Vec<i64>>,
+    /// The direction of the support scans in lifted coordinates.
+    y: Vec<f64>,
+}
+
 /// A decision of the float runs, already checked exactly.
 pub(super) enum FloatAnswer {
     /// A verified integer certificate.
@@ -40,7 +50,7 @@ pub(super) enum FloatAnswer {
 ///
 /// A float run that sees the origin inside a simplex the exact check puts it outside of drops
 /// the vertex with the most negative exact barycentric weight and goes on (a few times).
-/// `diffs` is scratch space for the simplex's exact points.
+/// `scratch` holds the runs' buffers.
 // The recognizer's fields, borrowed one by one (the closure in `solve` holds the others).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn float_decide(
@@ -50,11 +60,11 @@ pub(super) fn float_decide(
     max_abs: &[i64],
     stats: &mut Stats,
     thorough: bool,
-    diffs: &mut Vec<Vec<i64>>,
+    scratch: &mut FloatScratch,
     meter: &mut Meter,
 ) -> Option<FloatAnswer> {
+    let FloatScratch { diffs, y } = scratch;
     // The exact points of D at the simplex's vertices, into `diffs` (allocations reused).
-    // (Only the first `simplex.len()` entries are meaningful; longer is kept for reuse.)
     let exact_points = |simplex: &Simplex<f64>, diffs: &mut Vec<Vec<i64>>| -> usize {
         let k = simplex.len();
         if diffs.len() < k {
@@ -66,11 +76,7 @@ pub(super) fn float_decide(
         k
     };
     let n = map.dim();
-    let mut support = FloatSupport {
-        sets,
-        map,
-        y: Vec::with_capacity(n),
-    };
+    let mut support = FloatSupport { sets, map, y };
     // Warm start: rebuild the kept vertices in the current coordinates.
     simplex.rebuild(|tag, point| support.point_into(tag, point));
     let mut params = FLOAT_PARAMS;
@@ -103,10 +109,12 @@ pub(super) fn float_decide(
                 margin,
                 converged,
             } => {
-                let y = map.pull_back(&direction);
+                // (Into the support's buffer: the run is over.)
+                map.pull_back_into(&direction, support.y);
                 let k = exact_points(simplex, diffs);
                 let tight = &diffs[..k];
-                if let Some((a, e)) = round_to_certificate(&sets, &y, margin, max_abs, tight, meter)
+                if let Some((a, e)) =
+                    round_to_certificate(&sets, support.y, margin, max_abs, tight, meter)
                 {
                     return Some(FloatAnswer::Described(a, e));
                 }
@@ -166,6 +174,12 @@ pub(super) fn float_decide(
 /// better conditioned.
 pub(super) fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
     max_abs.iter().map(|&m| scale_for(m)).collect()
+}
+
+/// [`power_of_two_scale`] into `out`'s buffer.
+pub(super) fn power_of_two_scale_into(max_abs: &[i64], out: &mut Vec<f64>) {
+    out.clear();
+    out.extend(max_abs.iter().map(|&m| scale_for(m)));
 }
 
 /// `2^−⌈log₂ m⌉` (one over the least power of two at least `m`) for `m > 0`, else 1: the

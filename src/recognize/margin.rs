@@ -61,10 +61,11 @@ fn largest_margin_direction(
     hint: Option<&[i64]>,
 ) -> Option<Vec<f64>> {
     let map = LinearMap::diagonal(scale);
+    let mut y = Vec::with_capacity(scale.len());
     let mut support = FloatSupport {
         sets,
         map: &map,
-        y: Vec::with_capacity(scale.len()),
+        y: &mut y,
     };
     let mut simplex = Simplex::default();
     if let Some(a) = hint.filter(|a| a.len() == scale.len() && a.iter().any(|&v| v != 0)) {

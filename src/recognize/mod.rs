@@ -73,7 +73,7 @@ use crate::model::Basis;
 use budget::{scan_cost, Meter};
 use conditioning::{LinearMap, Moments};
 use exact::{decide_exactly, dot_i128, verify_certificate, ExactDecision};
-use float::{float_decide, power_of_two_scale, FloatAnswer};
+use float::{float_decide, power_of_two_scale_into, FloatAnswer, FloatScratch};
 use lifted::LiftedSet;
 pub(crate) use margin::max_margin_direction_from;
 pub use margin::{max_margin_direction, small_certificate, MarginDirection};
@@ -113,8 +113,13 @@ pub struct Recognizer {
     stats: Stats,
     rel: Vec<i64>,
     lift: Vec<i64>,
-    /// Scratch: the simplex vertices as exact points of `D`.
-    diffs: Vec<Vec<i64>>,
+    /// Scratch of the float runs.
+    float_scratch: FloatScratch,
+    /// Scratch: the powers of two of [`power_of_two_scale`] for `max_abs`.
+    scale: Vec<f64>,
+    /// The diagonal map of `scale`, set in place at each solve (a new one per solve was two
+    /// allocations of each).
+    scaled: LinearMap,
     /// Work since the last reset, and its limit.
     meter: Meter,
 }
@@ -145,7 +150,9 @@ impl Recognizer {
             stats: Stats::default(),
             rel: vec![0; pd],
             lift: vec![0; n],
-            diffs: Vec::new(),
+            float_scratch: FloatScratch::default(),
+            scale: Vec::with_capacity(n),
+            scaled: LinearMap::diagonal(&vec![1.0; n]),
             meter: Meter::unlimited(),
             basis,
         })
@@ -421,7 +428,9 @@ impl Recognizer {
         // module) once the piece has needed them. When both may be used, the first one gives
         // up at its first stall, the other one takes over, and the first one has a thorough
         // try last. Each attempt is warm-started from the simplex the previous one left.
-        let scaled = LinearMap::diagonal(&power_of_two_scale(&self.max_abs));
+        power_of_two_scale_into(&self.max_abs, &mut self.scale);
+        self.scaled.set_diagonal(&self.scale);
+        let scaled = &self.scaled;
         let mut run = |map: &LinearMap, thorough: bool| {
             float_decide(
                 sets,
@@ -430,7 +439,7 @@ impl Recognizer {
                 &self.max_abs,
                 &mut self.stats,
                 thorough,
-                &mut self.diffs,
+                &mut self.float_scratch,
                 &mut self.meter,
             )
         };
@@ -443,18 +452,18 @@ impl Recognizer {
         };
         let answer = match first {
             Some(w) => run(&w, false)
-                .or_else(|| run(&scaled, true))
+                .or_else(|| run(scaled, true))
                 .or_else(|| run(&w, true)),
             None => {
-                let mut answer = run(&scaled, !may_whiten);
+                let mut answer = run(scaled, !may_whiten);
                 if answer.is_none() && may_whiten {
                     self.moments.catch_up(&self.inliers);
                     answer = match LinearMap::whitening(&self.moments) {
                         Some(w) => {
                             self.whiten = true;
-                            run(&w, true).or_else(|| run(&scaled, true))
+                            run(&w, true).or_else(|| run(scaled, true))
                         }
-                        None => run(&scaled, true),
+                        None => run(scaled, true),
                     };
                     self.stats.whitened += u64::from(self.whiten);
                 }

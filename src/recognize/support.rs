@@ -229,7 +229,7 @@ pub(crate) struct FloatSupport<'a> {
     /// The map `T`.
     pub map: &'a LinearMap,
     /// Scratch: the direction `Tᵀx` in lifted coordinates.
-    pub y: Vec<f64>,
+    pub y: &'a mut Vec<f64>,
 }
 
 impl FloatSupport<'_> {
@@ -246,7 +246,7 @@ impl SupportMap<f64> for FloatSupport<'_> {
     }
 
     fn support_point(&mut self, x: &[f64], mut buf: Vec<f64>) -> Option<Vertex<f64>> {
-        self.map.pull_back_into(x, &mut self.y);
+        self.map.pull_back_into(x, self.y);
         let inl = float_extremes(self.sets.inliers, &self.y);
         let up = float_extreme::<false>(self.sets.upper, &self.y);
         let lo = float_extreme::<true>(self.sets.lower, &self.y);

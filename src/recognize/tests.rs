@@ -768,7 +768,7 @@ proptest! {
             &r.max_abs,
             &mut stats,
             true,
-            &mut Vec::new(),
+            &mut FloatScratch::default(),
             &mut Meter::unlimited(),
         );
         match got {
