@@ -68,15 +68,23 @@ impl PathCommand {
     /// approximated by cubics within 0.001 px; an arc that SVG treats as a
     /// straight line becomes a `LineTo`.
     pub fn to_path_els(&self, start: Point) -> Vec<PathEl> {
+        let mut out = Vec::new();
+        self.push_path_els(start, &mut out);
+        out
+    }
+
+    /// [`PathCommand::to_path_els`] appended to `out` (a [`kurbo::BezPath`], say): no vector
+    /// per command.
+    pub fn push_path_els(&self, start: Point, out: &mut impl Extend<PathEl>) {
         match *self {
-            PathCommand::Line(p) => vec![PathEl::LineTo(p)],
-            PathCommand::Quad(c, p) => vec![PathEl::QuadTo(c, p)],
-            PathCommand::Cubic(c1, c2, p) => vec![PathEl::CurveTo(c1, c2, p)],
+            PathCommand::Line(p) => out.extend([PathEl::LineTo(p)]),
+            PathCommand::Quad(c, p) => out.extend([PathEl::QuadTo(c, p)]),
+            PathCommand::Cubic(c1, c2, p) => out.extend([PathEl::CurveTo(c1, c2, p)]),
             PathCommand::Arc(a) => {
                 let svg = SvgArc { from: start, ..a };
                 match Arc::from_svg_arc(&svg) {
-                    Some(arc) => arc.append_iter(ARC_FLATTEN_TOLERANCE).collect(),
-                    None => vec![PathEl::LineTo(a.to)],
+                    Some(arc) => out.extend(arc.append_iter(ARC_FLATTEN_TOLERANCE)),
+                    None => out.extend([PathEl::LineTo(a.to)]),
                 }
             }
         }
@@ -111,7 +119,7 @@ mod tests {
         path.move_to(from);
         let mut cur = from;
         for cmd in &cmds {
-            path.extend(cmd.to_path_els(cur));
+            cmd.push_path_els(cur, &mut path);
             cur = cmd.end();
         }
         let segs: Vec<kurbo::PathSeg> = path.segments().collect();

@@ -93,9 +93,7 @@ fn stays_near(from: Point, cmds: &[PathCommand], pixels: &[Pixel]) -> bool {
     path.move_to(from);
     let mut pen = from;
     for c in cmds {
-        for el in c.to_path_els(pen) {
-            path.push(el);
-        }
+        c.push_path_els(pen, &mut path);
         pen = c.end();
     }
     let b = kurbo::Shape::bounding_box(&path);

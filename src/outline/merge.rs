@@ -183,9 +183,11 @@ fn merge_pass(
     fresh: &[bool],
     canvas: Option<kurbo::Rect>,
 ) -> Option<(Vec<PathCommand>, Vec<bool>)> {
-    // The loop `anchor → w → dropped reversed → anchor` paints nothing.
-    let paints_nothing = |anchor: Point, w: Point, dropped: &[Point]| {
-        let mut lp = Vec::with_capacity(dropped.len() + 2);
+    // The loop `anchor → w → dropped reversed → anchor` paints nothing (built in one
+    // buffer for the pass).
+    let mut lp: Vec<PathCommand> = Vec::new();
+    let mut paints_nothing = |anchor: Point, w: Point, dropped: &[Point]| {
+        lp.clear();
         lp.push(PathCommand::Line(w));
         lp.extend(dropped.iter().rev().map(|&p| PathCommand::Line(p)));
         lp.push(PathCommand::Line(anchor));

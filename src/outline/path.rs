@@ -169,9 +169,7 @@ impl ContourPath {
         path.push(PathEl::MoveTo(self.start));
         let mut pen = self.start;
         for c in &self.commands {
-            for el in c.to_path_els(pen) {
-                path.push(el);
-            }
+            c.push_path_els(pen, &mut path);
             pen = c.end();
         }
         path.push(PathEl::ClosePath);

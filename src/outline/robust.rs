@@ -326,9 +326,7 @@ pub(crate) fn finely_flattened(start: Point, commands: &[PathCommand]) -> Option
     path.move_to(start);
     let mut pen = start;
     for c in commands {
-        for el in c.to_path_els(pen) {
-            path.push(el);
-        }
+        c.push_path_els(pen, &mut path);
         pen = c.end();
     }
     kurbo::flatten(path, FINE_FLATTENING, |el| {
