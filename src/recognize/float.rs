@@ -111,6 +111,7 @@ pub(super) fn float_decide(
             } => {
                 // (Into the support's buffer: the run is over.)
                 map.pull_back_into(&direction, support.y);
+                simplex.recycle(direction);
                 let k = exact_points(simplex, diffs);
                 let tight = &diffs[..k];
                 if let Some((a, e)) =

@@ -102,16 +102,20 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
             .iter()
             .map(|v| dot(&v.point, &v.point))
             .fold(T::zero(), |m, n| if n > m { n } else { m });
+        // (The buffers of points that end here go back to the simplex for the next run.)
         if xx <= T::tolerance(&max_w, params.eps_zero) {
+            simplex.recycle(x);
             return ended(GjkOutcome::OriginInside, iteration);
         }
         // Every iteration must decrease ‖x‖² strictly; otherwise rounding is cycling.
         if previous.as_ref().is_some_and(|p| xx >= *p) {
+            simplex.recycle(x);
             return ended(GjkOutcome::Stalled, iteration);
         }
         previous = Some(xx.clone());
         let buf = simplex.buffer();
         let Some(s) = support.support_point(&x, buf) else {
+            simplex.recycle(x);
             return ended(GjkOutcome::Empty, iteration);
         };
         let xs = dot(&x, &s.point);
@@ -121,6 +125,7 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         // would make the simplex affinely dependent.
         let converged = gap <= T::tolerance(&xx, params.gap) || simplex.contains_point(&s.point);
         if xs > T::zero() && (params.first_separation || converged) {
+            simplex.recycle(s.point);
             return ended(
                 GjkOutcome::Separated {
                     direction: x,
@@ -133,6 +138,8 @@ pub(crate) fn gjk<T: Scalar, S: SupportMap<T>>(
         if converged || simplex.contains(&s.tag) {
             // x is (numerically) the closest point but does not separate: x ≈ 0 in truth,
             // or rounding hides progress.
+            simplex.recycle(x);
+            simplex.recycle(s.point);
             return ended(GjkOutcome::Stalled, iteration);
         }
         simplex.add_vertex(s);
@@ -161,9 +168,13 @@ fn pick_point<T: Scalar, S: SupportMap<T>>(
     eps: f64,
 ) -> Result<(), GjkOutcome<T>> {
     if simplex.is_empty() {
-        let any = vec![T::zero(); support.dim()];
+        let mut any = simplex.buffer();
+        any.clear();
+        any.resize(support.dim(), T::zero());
         let buf = simplex.buffer();
-        match support.support_point(&any, buf) {
+        let v = support.support_point(&any, buf);
+        simplex.recycle(any);
+        match v {
             Some(v) => simplex.reset_to(v),
             None => return Err(GjkOutcome::Empty),
         }
