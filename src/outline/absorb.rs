@@ -115,15 +115,14 @@ fn directions(from: Point, c: &PathCommand) -> Option<(Vec2, Vec2)> {
 
 /// The loop from `a` along `cubic`, then back along `cmds` (from `a`) to `a`.
 fn difference_loop(a: Point, cubic: PathCommand, cmds: &[PathCommand]) -> Vec<PathCommand> {
-    let mut starts = Vec::with_capacity(cmds.len());
-    let mut pen = a;
-    for c in cmds {
-        starts.push(pen);
-        pen = c.end();
-    }
     let mut lp = Vec::with_capacity(cmds.len() + 1);
     lp.push(cubic);
-    for (c, &from) in cmds.iter().zip(&starts).rev() {
+    for (i, c) in cmds.iter().enumerate().rev() {
+        // Where command `i` starts.
+        let from = match i {
+            0 => a,
+            _ => cmds[i - 1].end(),
+        };
         lp.push(match *c {
             PathCommand::Quad(q, _) => PathCommand::Quad(q, from),
             PathCommand::Cubic(p1, p2, _) => PathCommand::Cubic(p2, p1, from),

@@ -70,7 +70,9 @@ pub(crate) fn verify_certificate(sets: &Sets<'_>, a: &[i64]) -> Option<Extremes>
 /// `margin` is the computed `min_{d∈D} y·d > 0` and `max_abs[i]` bounds `|F_i|` over the
 /// sets: rounding `t·y` moves each `a·d` by at most `Σ_i max_abs[i]`, so a scale
 /// `t > Σ max_abs / margin` is guaranteed to work when the float margin is right; the
-/// ladder starts a few powers of two below that to find smaller integers.
+/// ladder starts a few powers of two below that to find smaller integers. `bufs` are the
+/// roundings' buffers (the caller's, kept from call to call; the certificate returned is
+/// one of them, moved out).
 pub(crate) fn round_to_certificate(
     sets: &Sets<'_>,
     y: &[f64],
@@ -78,6 +80,7 @@ pub(crate) fn round_to_certificate(
     max_abs: &[i64],
     tight: &[Vec<i64>],
     meter: &mut Meter,
+    bufs: &mut [Vec<i64>; 2],
 ) -> Option<(Vec<i64>, Extremes)> {
     let ymax = y.iter().fold(0.0f64, |m, v| m.max(f64::abs(*v)));
     if ymax.is_nan() || ymax <= 0.0 || !ymax.is_finite() || margin.is_nan() || margin <= 0.0 {
@@ -89,8 +92,7 @@ pub(crate) fn round_to_certificate(
     let k_hi = (needed + 3.0).clamp(0.0, 61.0) as i32;
     let k_lo = (needed - 6.0).clamp(0.0, 61.0) as i32;
     // Two buffers, swapped: the rounding at this scale and the last one tried.
-    let mut a: Vec<i64> = Vec::with_capacity(y.len());
-    let mut last: Vec<i64> = Vec::new();
+    let [a, last] = bufs;
     let mut tried = false;
     for k in k_lo..=k_hi {
         let t = (k as f64).exp2() / ymax;
@@ -103,11 +105,11 @@ pub(crate) fn round_to_certificate(
         let plausible = tight.iter().all(|d| dot_i128(&a, d).is_some_and(|v| v > 0));
         if plausible {
             meter.charge(scan_cost(sets));
-            if let Some(e) = verify_certificate(sets, &a) {
-                return Some(reduce_by_gcd(a, e));
+            if let Some(e) = verify_certificate(sets, a) {
+                return Some(reduce_by_gcd(std::mem::take(a), e));
             }
         }
-        std::mem::swap(&mut a, &mut last);
+        std::mem::swap(a, last);
         tried = true;
     }
     None

@@ -35,6 +35,8 @@ pub(super) struct FloatScratch {
     diffs: Vec<Vec<i64>>,
     /// The direction of the support scans in lifted coordinates.
     y: Vec<f64>,
+    /// The buffers of [`round_to_certificate`].
+    roundings: [Vec<i64>; 2],
 }
 
 /// A decision of the float runs, already checked exactly.
@@ -63,7 +65,11 @@ pub(super) fn float_decide(
     scratch: &mut FloatScratch,
     meter: &mut Meter,
 ) -> Option<FloatAnswer> {
-    let FloatScratch { diffs, y } = scratch;
+    let FloatScratch {
+        diffs,
+        y,
+        roundings,
+    } = scratch;
     // The exact points of D at the simplex's vertices, into `diffs` (allocations reused).
     let exact_points = |simplex: &Simplex<f64>, diffs: &mut Vec<Vec<i64>>| -> usize {
         let k = simplex.len();
@@ -115,7 +121,7 @@ pub(super) fn float_decide(
                 let k = exact_points(simplex, diffs);
                 let tight = &diffs[..k];
                 if let Some((a, e)) =
-                    round_to_certificate(&sets, support.y, margin, max_abs, tight, meter)
+                    round_to_certificate(&sets, support.y, margin, max_abs, tight, meter, roundings)
                 {
                     return Some(FloatAnswer::Described(a, e));
                 }
