@@ -23,7 +23,7 @@
 //! `q`), so following such holes ends at the outer border.
 
 use crate::contour::Contour;
-use crate::outline::crack_polyline;
+use crate::outline::crack_polyline_into;
 use crate::outline::tiles::{tiles, TileSize};
 
 /// Fewest pixels between a group's pixels and the sides of the tile clip holding it for its
@@ -47,13 +47,15 @@ pub(crate) fn outer_borders(contours: &[Contour]) -> Option<Vec<usize>> {
     let mut entering: Vec<(i32, i32, u32)> = Vec::new();
     // Each hole's first vertical crack with the foreground on its left, in raster order.
     let mut first_crack: Vec<Option<(i32, i32)>> = vec![None; n];
+    // Each contour's crack polygon, in one buffer.
+    let mut poly = Vec::new();
     for (k, c) in contours.iter().enumerate() {
         let m = c.points.len();
         if !c.closed || m == 0 || (m > 1 && c.points[0] == c.points[m - 1]) {
             return None;
         }
         let index = u32::try_from(k).ok()?;
-        let poly = crack_polyline(&c.points, 0, m - 1);
+        crack_polyline_into(&c.points, 0, m - 1, &mut poly);
         for (i, a) in poly.iter().enumerate() {
             let b = poly[(i + 1) % poly.len()];
             if a.x != b.x {

@@ -82,7 +82,7 @@ use absorb::absorb_runs;
 use builder::Builder;
 use coarse::coarse_cracks;
 use corners::cut_staircase_corners;
-pub(crate) use cracks::crack_polyline;
+pub(crate) use cracks::{crack_polyline, crack_polyline_into};
 use cracks::{pieces_valid, Cracks};
 use joins::{build, Memo};
 use merge::merge_lines;

@@ -28,7 +28,6 @@ use super::tiles::clear_of_tile_cuts;
 use crate::contour::{Contour, TINY_POINTS};
 use crate::curve::PathCommand;
 use crate::decompose::Piece;
-use crate::recognize::Extremes;
 
 /// Most shapes kept (give or take a group of contours): beyond, new shapes are drawn where
 /// they are. Bounds the memory of an
@@ -45,16 +44,17 @@ const CANVAS_MARGIN: f64 = 6.0;
 /// What decides a tiny contour's drawing: its points relative to the first one, whether it
 /// is a hole, and its pieces (bounds and certificates, origins relative to that point).
 ///
-/// Hashed once, when made: a key is looked up three or four times (2000² noise spent 3% of
-/// its time hashing keys anew), so [`Hash`] writes that hash only, and equal keys have
-/// equal hashes since it is computed from the fields that [`PartialEq`] compares.
+/// Written as one list of numbers, each list length-prefixed, so that equal lists are equal
+/// shapes (one allocation per key: noise makes hundreds of thousands of keys). Hashed once,
+/// when made: a key is looked up three or four times (2000² noise spent 3% of its time
+/// hashing keys anew), so [`Hash`] writes that hash only, and equal keys have equal hashes
+/// since it is computed from the list that [`PartialEq`] compares.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct ShapeKey {
-    /// FxHash of the other fields.
+    /// FxHash of `data`.
     hash: u64,
-    hole: bool,
-    points: Vec<(i32, i32)>,
-    pieces: Vec<PieceKey>,
+    /// Hole, points, pieces (see [`ShapeKey::of`]).
+    data: Vec<i64>,
 }
 
 impl std::hash::Hash for ShapeKey {
@@ -63,20 +63,28 @@ impl std::hash::Hash for ShapeKey {
     }
 }
 
-/// A piece of a [`ShapeKey`].
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-struct PieceKey {
-    first: usize,
-    last: usize,
-    origin: [i64; 2],
-    coefficients: Vec<i64>,
-    extremes: Extremes,
+/// Appends `v` to a key's list as two numbers.
+fn push_i128(data: &mut Vec<i64>, v: i128) {
+    data.push((v >> 64) as i64);
+    data.push(v as i64);
+}
+
+/// Appends `v` to a key's list as three numbers (`0, 0, 0` for `None`).
+fn push_option(data: &mut Vec<i64>, v: Option<i128>) {
+    data.push(i64::from(v.is_some()));
+    push_i128(data, v.unwrap_or(0));
 }
 
 impl ShapeKey {
     /// The key of a tiny contour (see [`Contour::tiny_shape`]); `None` for a larger (or
-    /// empty) one, or one within [`CANVAS_MARGIN`] of the border of `canvas` (the
-    /// document's pixmap, see [`OutlineOptions::canvas`](super::OutlineOptions::canvas)).
+    /// empty) one, one within [`CANVAS_MARGIN`] of the border of `canvas` (the document's
+    /// pixmap, see [`OutlineOptions::canvas`](super::OutlineOptions::canvas)), or one with
+    /// a piece that is not planar.
+    ///
+    /// The list: whether it is a hole; the number of points and each one's `x, y` relative
+    /// to the first; the number of pieces and for each its `first, last`, its origin
+    /// relative to the first point, the number of its coefficients and the coefficients,
+    /// and its extremes (each `i128` as two numbers, an `Option` behind a flag).
     pub(crate) fn of(
         contour: &Contour,
         pieces: &[Piece],
@@ -101,38 +109,42 @@ impl ShapeKey {
         if !clear_of_tile_cuts(x0, y0, x1, y1, canvas, CANVAS_MARGIN as i64) {
             return None;
         }
-        let points = contour.tiny_shape()?;
-        let pieces = pieces
+        let (fx, fy) = (i64::from(first.x), i64::from(first.y));
+        let len = |n: usize| i64::try_from(n).ok();
+        let coefficients: usize = pieces
             .iter()
-            .map(|p| {
-                // (Planar pieces only: their origins are points of the plane.)
-                let [ox, oy] = *p.certificate.origin.as_slice() else {
-                    return None;
-                };
-                Some(PieceKey {
-                    first: p.first,
-                    last: p.last,
-                    origin: [
-                        ox.wrapping_sub(i64::from(first.x)),
-                        oy.wrapping_sub(i64::from(first.y)),
-                    ],
-                    coefficients: p.certificate.coefficients.clone(),
-                    extremes: p.certificate.extremes,
-                })
-            })
-            .collect::<Option<Vec<PieceKey>>>()?;
+            .map(|p| p.certificate.coefficients.len())
+            .sum();
+        let mut data =
+            Vec::with_capacity(2 + 2 * contour.points.len() + 1 + 15 * pieces.len() + coefficients);
+        data.push(i64::from(contour.hole));
+        data.push(len(contour.points.len())?);
+        for p in &contour.points {
+            data.extend([i64::from(p.x) - fx, i64::from(p.y) - fy]);
+        }
+        data.push(len(pieces.len())?);
+        for p in pieces {
+            // (Planar pieces only: their origins are points of the plane.)
+            let [ox, oy] = *p.certificate.origin.as_slice() else {
+                return None;
+            };
+            let c = &p.certificate.coefficients;
+            data.extend([len(p.first)?, len(p.last)?]);
+            data.extend([ox.wrapping_sub(fx), oy.wrapping_sub(fy), len(c.len())?]);
+            data.extend_from_slice(c);
+            let e = &p.certificate.extremes;
+            push_i128(&mut data, e.lower);
+            push_i128(&mut data, e.upper);
+            push_option(&mut data, e.above);
+            push_option(&mut data, e.below);
+        }
         let hash = {
             use std::hash::{Hash, Hasher};
             let mut h = rustc_hash::FxHasher::default();
-            (contour.hole, &points, &pieces).hash(&mut h);
+            data.hash(&mut h);
             h.finish()
         };
-        Some(ShapeKey {
-            hash,
-            hole: contour.hole,
-            points,
-            pieces,
-        })
+        Some(ShapeKey { hash, data })
     }
 }
 
