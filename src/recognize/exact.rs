@@ -102,7 +102,7 @@ pub(crate) fn round_to_certificate(
             continue;
         }
         // Cheap filter first: the tightest points of D (the simplex) must be positive.
-        let plausible = tight.iter().all(|d| dot_i128(&a, d).is_some_and(|v| v > 0));
+        let plausible = tight.iter().all(|d| dot_i128(a, d).is_some_and(|v| v > 0));
         if plausible {
             meter.charge(scan_cost(sets));
             if let Some(e) = verify_certificate(sets, a) {

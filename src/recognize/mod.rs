@@ -115,7 +115,7 @@ pub struct Recognizer {
     lift: Vec<i64>,
     /// Scratch of the float runs.
     float_scratch: FloatScratch,
-    /// Scratch: the powers of two of [`power_of_two_scale`] for `max_abs`.
+    /// Scratch: the powers of two of [`float::power_of_two_scale`] for `max_abs`.
     scale: Vec<f64>,
     /// The diagonal map of `scale`, set in place at each solve (a new one per solve was two
     /// allocations of each).

@@ -247,9 +247,9 @@ impl SupportMap<f64> for FloatSupport<'_> {
 
     fn support_point(&mut self, x: &[f64], mut buf: Vec<f64>) -> Option<Vertex<f64>> {
         self.map.pull_back_into(x, self.y);
-        let inl = float_extremes(self.sets.inliers, &self.y);
-        let up = float_extreme::<false>(self.sets.upper, &self.y);
-        let lo = float_extreme::<true>(self.sets.lower, &self.y);
+        let inl = float_extremes(self.sets.inliers, self.y);
+        let up = float_extreme::<false>(self.sets.upper, self.y);
+        let lo = float_extreme::<true>(self.sets.lower, self.y);
         let tag = pick(inl, up, lo, |a, b| a - b)?;
         self.point_into(&tag, &mut buf);
         Some(Vertex { point: buf, tag })
