@@ -124,7 +124,6 @@ pub(crate) fn build(
     let mut b = Builder::with_capacity(grid, 2 * m + 4);
     let mut use_curve: Vec<bool> = stretches.iter().map(|s| s.poly.is_some()).collect();
     let mut failed = Vec::new();
-
     // A stretch whose both end pixels are cracked and that has no more than one pixel
     // between them is drawn along its cracks.
     for k in 0..m {

@@ -180,7 +180,9 @@ pub(super) fn float_decide(
 /// `|F_i|`): separation is invariant under this diagonal map, and the float solves are far
 /// better conditioned.
 pub(super) fn power_of_two_scale(max_abs: &[i64]) -> Vec<f64> {
-    max_abs.iter().map(|&m| scale_for(m)).collect()
+    let mut out = Vec::with_capacity(max_abs.len());
+    power_of_two_scale_into(max_abs, &mut out);
+    out
 }
 
 /// [`power_of_two_scale`] into `out`'s buffer.
