@@ -5,6 +5,7 @@ use super::runs::component_starts;
 use super::{fg, Contour};
 use crate::bitmap::Mask;
 use crate::pixel::Pixel;
+use rayon::prelude::*;
 
 /// The eight neighbour offsets; increasing index turns clockwise on screen.
 const DIRS: [(i32, i32); 8] = [
@@ -26,10 +27,25 @@ fn offset(p: Pixel, d: usize) -> Pixel {
     Pixel::new(p.x + dx, p.y + dy)
 }
 
-#[inline]
-fn dir_of(dx: i32, dy: i32) -> usize {
-    DIRS.iter().position(|&o| o == (dx, dy)).unwrap_or(0)
-}
+/// For each direction `d`, the direction from the neighbour in direction `d` to the one in
+/// direction `d + 1` (a unit step: consecutive neighbours are 4-adjacent); the same from
+/// every pixel, so [`moore_step`] looks it up.
+const TO_NEXT: [usize; 8] = {
+    let mut table = [0; 8];
+    let mut d = 0;
+    while d < 8 {
+        let (q, c) = (DIRS[d], DIRS[(d + 1) % 8]);
+        let mut k = 0;
+        while k < 8 {
+            if DIRS[k].0 == c.0 - q.0 && DIRS[k].1 == c.1 - q.1 {
+                table[d] = k;
+            }
+            k += 1;
+        }
+        d += 1;
+    }
+    table
+};
 
 /// One Moore step: at `p`, whose neighbour in direction `back` is background in the region
 /// being followed, sweep the neighbours counter-clockwise on screen starting after `back`;
@@ -41,8 +57,7 @@ fn moore_step(mask: &Mask, p: Pixel, back: usize) -> Option<(Pixel, usize)> {
         let d = (back + 8 - k) % 8;
         let q = offset(p, d);
         if fg(mask, q) {
-            let c = offset(p, d + 1);
-            return Some((q, dir_of(c.x - q.x, c.y - q.y)));
+            return Some((q, TO_NEXT[d]));
         }
     }
     None
@@ -78,10 +93,11 @@ fn moore_trace(mask: &Mask, p0: Pixel, back0: usize) -> Vec<Pixel> {
     points
 }
 
-/// Traces [`super::Convention::Default`].
+/// Traces [`super::Convention::Default`], the components in parallel (rayon; the order
+/// stays raster order of their first pixels).
 pub(super) fn trace_default(mask: &Mask) -> Vec<Contour> {
     component_starts(mask)
-        .into_iter()
+        .into_par_iter()
         .map(|s| {
             if s.hole {
                 // The pixel above a hole's first pixel is foreground (y > 0, and a
