@@ -121,6 +121,11 @@ pub enum Convention {
 /// Pixel coordinates are `i32`: a mask wider or taller than `i32::MAX - 2` pixels gives no
 /// contours (the loader's pixel limit keeps images far below that).
 ///
+/// In the default convention the borders are traced in parallel on the current rayon pool:
+/// within [`vectorize`](crate::vectorize), the pool of its options (`Options::pool`),
+/// rayon's global pool when called on its own. The contours do not depend on the number of
+/// threads.
+///
 /// ```
 /// use layertrace::{trace, Convention, Mask};
 /// let mask = Mask::from_ascii(
