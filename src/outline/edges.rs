@@ -235,7 +235,7 @@ impl Crossings {
     }
 
     /// A quadratic, cut where it turns in y.
-    fn quad(&mut self, p: [SkPoint; 3]) {
+    pub(super) fn quad(&mut self, p: [SkPoint; 3]) {
         self.monotonic_parts(
             p,
             chop_quad_at_y_extrema,
@@ -245,7 +245,7 @@ impl Crossings {
     }
 
     /// A quadratic monotonic in y (`QuadraticEdge`).
-    fn mono_quad(&mut self, p: &[SkPoint]) {
+    pub(super) fn mono_quad(&mut self, p: &[SkPoint]) {
         let ((mut x0, mut y0), (x1, y1), (mut x2, mut y2)) =
             (fdot6(p[0]), fdot6(p[1]), fdot6(p[2]));
         let mut winding = 1;
@@ -286,7 +286,7 @@ impl Crossings {
     }
 
     /// A cubic, cut where it turns in y.
-    fn cubic(&mut self, p: [SkPoint; 4]) {
+    pub(super) fn cubic(&mut self, p: [SkPoint; 4]) {
         self.monotonic_parts(
             p,
             chop_cubic_at_y_extrema,
@@ -296,7 +296,7 @@ impl Crossings {
     }
 
     /// A cubic monotonic in y (`CubicEdge`).
-    fn mono_cubic(&mut self, p: &[SkPoint]) {
+    pub(super) fn mono_cubic(&mut self, p: &[SkPoint]) {
         let ((mut x0, mut y0), (mut x1, mut y1)) = (fdot6(p[0]), fdot6(p[1]));
         let ((mut x2, mut y2), (mut x3, mut y3)) = (fdot6(p[2]), fdot6(p[3]));
         let mut winding = 1;

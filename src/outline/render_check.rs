@@ -45,8 +45,10 @@ pub(crate) struct Reference {
     pub(super) start: Point,
     /// The polygon's vertices after `start`, in order.
     pub(super) vertices: Vec<Point>,
-    lo: Point,
-    hi: Point,
+    /// The least coordinates of its points.
+    pub(super) lo: Point,
+    /// The largest coordinates of its points.
+    pub(super) hi: Point,
 }
 
 impl Reference {

@@ -13,8 +13,8 @@
 //! fills on random paths.
 
 use super::edges::{Crossing, Crossings, Tag};
-use super::line_clip::clip_line;
-use super::render_check::{has_curves, Reference, Window};
+use super::render_check::{Reference, Window};
+use super::scan_edges::{clips, path_bounds, Draw, Moved, CUBIC, QUAD};
 use crate::curve::PathCommand;
 use kurbo::Point;
 use tiny_skia_path::Point as SkPoint;
@@ -99,24 +99,18 @@ fn scanned(
     SCRATCH.with(|cell| {
         let mut scratch = cell.take();
         let (d, first_only) = shift.unwrap_or((0.0, false));
-        let curves = has_curves(commands);
         let scan = Scan {
             reference,
             start,
             commands,
-            curves,
             win,
             clipped,
             shift: d,
             first_only,
         };
-        // Lines drawn the clipped way, in one fill: tiny-skia's edge clipper runs on every
-        // edge (`mask_fill`'s sliver puts the path's bounds outside the mask), so the path
-        // may leave the window, each line clipped as tiny-skia clips it.
         let painted = match shift {
-            None if clipped && !curves => painted_with::<1, true>(&mut scratch, scan),
-            None => painted_with::<1, false>(&mut scratch, scan),
-            Some(_) => painted_with::<3, false>(&mut scratch, scan),
+            None => painted_with::<1>(&mut scratch, scan),
+            Some(_) => painted_with::<3>(&mut scratch, scan),
         };
         if scratch.out.capacity() <= MAX_KEPT {
             cell.replace(scratch);
@@ -125,9 +119,8 @@ fn scanned(
     })
 }
 
-/// Farthest a point of a path of lines drawn clipped may lie from the window's corner (px)
-/// for the scan to clip it: far from where tiny-skia gives up (bounds spanning about 2^31
-/// px).
+/// Farthest a point of a path may lie from the window's corner (px) for the scan to clip
+/// it: far from where tiny-skia gives up (bounds spanning about 2^31 px).
 const MAX_CLIPPED: f64 = 1e9;
 
 /// Most crossings whose buffers [`SCRATCH`] keeps: a huge contour's would hold their
@@ -160,8 +153,6 @@ struct Scan<'a> {
     reference: &'a Reference,
     start: Point,
     commands: &'a [PathCommand],
-    /// Whether `commands` has curves.
-    curves: bool,
     win: &'a Window,
     /// Curves drawn the clipped way.
     clipped: bool,
@@ -171,14 +162,11 @@ struct Scan<'a> {
     first_only: bool,
 }
 
-/// A point of the path as tiny-skia gets it in each fill of [`painted_with`]: as it is,
-/// moved by `d[1]`, moved by `d[2]`.
-type Moved = [SkPoint; 3];
-
 /// [`scanned`] with the buffers of `scratch`: `FILLS` 1 (the path as it is) or 3 (also
-/// moved by `±shift`); with `CLIP_LINES` (one fill of lines only), every line clipped to
-/// the window as tiny-skia clips it ([`clip_line`]), points outside it allowed.
-fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
+/// moved by `±shift`). Each fill whose path tiny-skia clips ([`clips`]) has every edge
+/// clipped as its edge clipper clips it ([`clip_line`], [`super::curve_clip`]), points
+/// outside the window allowed.
+fn painted_with<const FILLS: usize>(
     scratch: &mut Scratch,
     scan: Scan<'_>,
 ) -> Option<[Vec<usize>; 3]> {
@@ -186,7 +174,6 @@ fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
         reference,
         start,
         commands,
-        curves,
         win,
         clipped,
         shift,
@@ -196,7 +183,6 @@ fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
     if !(1..=MAX_WINDOW).contains(&w) || !(1..=MAX_WINDOW).contains(&h) {
         return None;
     }
-    let (wf, hf) = (w as f64, h as f64);
     let (dx, dy) = (win.x0 as f64, win.y0 as f64);
     // The fills: the path as it is, then moved by ±shift (k/64 px, k · 2^10 in 16.16).
     let k64 = {
@@ -206,40 +192,37 @@ fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
     let d = [0.0, f64::from(k64) / 64.0, -f64::from(k64) / 64.0];
     let offsets = [0, k64 << 10, -(k64 << 10)];
     // As `difference_path` hands the points to tiny-skia (a moved path is moved first).
-    let margin = if curves { 1.0 } else { 0.0 };
-    let inside = |x: f64, y: f64| {
-        if CLIP_LINES {
-            // (Far within `f32`'s range: tiny-skia fills nothing where the path's bounds in
-            // whole pixels overflow `i32`, or its coordinates are near `f32::MAX`.)
-            x.abs() <= MAX_CLIPPED && y.abs() <= MAX_CLIPPED
-        } else {
-            x >= margin && y >= margin && x <= wf - margin && y <= hf - margin
-        }
-    };
+    // (Far within `f32`'s range: tiny-skia fills nothing where the path's bounds in whole
+    // pixels overflow `i32`, or its coordinates are near `f32::MAX`.)
+    let near = |x: f64, y: f64| x.abs() <= MAX_CLIPPED && y.abs() <= MAX_CLIPPED;
     let at = |p: Point| -> Option<SkPoint> {
         let (x, y) = (p.x - dx, p.y - dy);
-        inside(x, y).then(|| SkPoint::from_xy(x as f32, y as f32))
-    };
-    let mask = (w as f32, h as f32);
-    let line = |edges: &mut Crossings, a: SkPoint, b: SkPoint| {
-        if CLIP_LINES {
-            clip_line([a, b], mask, |p, q| edges.line(p, q));
-        } else {
-            edges.line(a, b);
-        }
+        near(x, y).then(|| SkPoint::from_xy(x as f32, y as f32))
     };
     let moved = |p: Point| -> Option<Moved> {
         let plain = at(p)?;
         let mut out = [plain; 3];
         for k in 1..FILLS {
-            let (x, y) = ((p.x + d[k]) - dx, p.y - dy);
-            if !inside(x, y) || f64::from(x as f32) != f64::from(plain.x) + d[k] {
+            let x = (p.x + d[k]) - dx;
+            if !near(x, 0.0) || f64::from(x as f32) != f64::from(plain.x) + d[k] {
                 return None;
             }
             out[k].x = x as f32;
         }
         Some(out)
     };
+    let mut clip = [clipped; 3];
+    if !clipped {
+        let (lo, hi) = path_bounds(start, commands);
+        for k in 0..FILLS {
+            let (lo, hi) = (Point::new(lo.x + d[k], lo.y), Point::new(hi.x + d[k], hi.y));
+            clip[k] = clips(
+                [lo, hi, reference.lo, reference.hi]
+                    .map(|p| SkPoint::from_xy((p.x - dx) as f32, (p.y - dy) as f32)),
+                (w, h),
+            );
+        }
+    }
     scratch.out.clear();
     let mut edges = Crossings {
         out: std::mem::take(&mut scratch.out),
@@ -247,39 +230,47 @@ fn painted_with<const FILLS: usize, const CLIP_LINES: bool>(
         tag: Tag::SHARED,
         x_chops: clipped,
     };
+    let draw = Draw {
+        fills: FILLS,
+        clip,
+        mask: (w as f32, h as f32),
+    };
     let first = moved(start)?;
     let mut pen = first;
     for c in commands {
         pen = match *c {
             PathCommand::Line(p) => {
                 let q = moved(p)?;
-                line(&mut edges, pen[0], q[0]);
+                draw.line(&mut edges, [pen, q], Tag::SHARED);
                 q
             }
             PathCommand::Quad(a, p) => {
                 let (a, q) = (moved(a)?, moved(p)?);
-                edges.quad_in_fills(|k| [pen[k], a[k], q[k]], FILLS);
+                if !draw.curve(&mut edges, [pen, a, q], &QUAD) {
+                    return None;
+                }
                 q
             }
             PathCommand::Cubic(a, b, p) => {
                 let (a, b, q) = (moved(a)?, moved(b)?, moved(p)?);
-                edges.cubic_in_fills(|k| [pen[k], a[k], b[k], q[k]], FILLS);
+                if !draw.curve(&mut edges, [pen, a, b, q], &CUBIC) {
+                    return None;
+                }
                 q
             }
             PathCommand::Arc(_) => return None,
         };
     }
-    line(&mut edges, pen[0], first[0]);
+    draw.line(&mut edges, [pen, first], Tag::SHARED);
     // The reference reversed: from its start through its vertices backwards, closed.
-    edges.tag = Tag::FIXED;
     let rstart = at(reference.start)?;
     let mut pen = rstart;
     for &p in reference.vertices.iter().rev() {
         let q = at(p)?;
-        line(&mut edges, pen, q);
+        draw.line(&mut edges, [[pen; 3], [q; 3]], Tag::FIXED);
         pen = q;
     }
-    line(&mut edges, pen, rstart);
+    draw.line(&mut edges, [[pen; 3], [rstart; 3]], Tag::FIXED);
     // By row (a counting sort: a large contour's crack polygon crosses thousands of rows a
     // few times each), then by x within each row.
     scratch.out = edges.out;
@@ -641,7 +632,7 @@ mod tests {
     }
 
     #[test]
-    fn paths_tiny_skia_would_clip_are_left_to_it() {
+    fn arcs_are_left_to_tiny_skia() {
         let (start, reference) = one_crack();
         let win = square(10);
         let inside = [PathCommand::Cubic(
@@ -650,11 +641,23 @@ mod tests {
             Point::new(5.0, 7.0),
         )];
         assert!(painted(&reference, start, &inside, &win, true).is_some());
-        // A control point within a pixel of the window's side.
+        // A control point within a pixel of the window's side: tiny-skia clips it.
         let near = [PathCommand::Quad(
             Point::new(9.5, 6.0),
             Point::new(5.0, 7.0),
         )];
-        assert!(painted(&reference, start, &near, &win, false).is_none());
+        assert_eq!(
+            painted(&reference, start, &near, &win, false).expect("scanned"),
+            tiny_skia_indices(&reference, start, &near, &win, false)
+        );
+        let arc = [PathCommand::Arc(kurbo::SvgArc {
+            from: start,
+            to: Point::new(5.0, 7.0),
+            radii: kurbo::Vec2::new(1.0, 1.0),
+            x_rotation: 0.0,
+            large_arc: false,
+            sweep: true,
+        })];
+        assert!(painted(&reference, start, &arc, &win, false).is_none());
     }
 }
