@@ -528,3 +528,64 @@ pub(super) fn chop_mono_cubic_at_x(src: &[SkPoint; 4], x: f32, dst: &mut [SkPoin
 pub(super) fn chop_mono_cubic_at_y(src: &[SkPoint; 4], y: f32, dst: &mut [SkPoint; 7]) -> bool {
     dchop_at_intercept(src, y, 1, dst)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cube_roots() {
+        assert!((cube_root(27.0) - 3.0).abs() < 1e-12);
+        assert!((cube_root(-8.0) + 2.0).abs() < 1e-12);
+        assert_eq!(cube_root(1e-25), 0.0);
+    }
+
+    #[test]
+    fn the_roots_of_a_cubic_within_the_unit_interval() {
+        // (t − 0.2)(t − 0.5)(t − 0.9) and (t − 0.5)(t − 3)(t + 2).
+        let mut t = [0.0; 3];
+        let n = roots_valid_t(1.0, -1.6, 0.73, -0.09, &mut t);
+        let mut found = t[..n].to_vec();
+        found.sort_by(f64::total_cmp);
+        assert_eq!(found.len(), 3);
+        for (a, b) in found.iter().zip([0.2, 0.5, 0.9]) {
+            assert!((a - b).abs() < 1e-9, "{found:?}");
+        }
+        let n = roots_valid_t(1.0, -1.5, -5.5, 3.0, &mut t);
+        assert_eq!(n, 1);
+        assert!((t[0] - 0.5).abs() < 1e-9);
+        // Just beyond 1: taken as 1.
+        let n = roots_valid_t(0.0, 0.0, 1.0, -1.00001, &mut t);
+        assert_eq!((n, t[0]), (1, 1.0));
+    }
+
+    #[test]
+    fn monotonic_cubics_cut_where_they_cross_a_line() {
+        let p = |x: f32, y: f32| SkPoint::from_xy(x, y);
+        // x = 6t − 3: the root t = 1/2 is exact, and the cut at it too.
+        let src = [p(-3.0, 0.0), p(-1.0, 3.0), p(1.0, 6.0), p(3.0, 10.0)];
+        let mut dst = [SkPoint::zero(); 7];
+        assert!(chop_mono_cubic_at_x(&src, 0.0, &mut dst));
+        assert_eq!((dst[0], dst[6]), (src[0], src[3]));
+        assert_eq!(dst[3], p(0.0, 4.625));
+        // Nowhere near the line: no cut, `dst` untouched.
+        let mut untouched = [SkPoint::zero(); 7];
+        assert!(!chop_mono_cubic_at_x(&src, 20.0, &mut untouched));
+        assert_eq!(untouched, [SkPoint::zero(); 7]);
+    }
+
+    #[test]
+    fn searches_along_increasing_cubics_find_nothing() {
+        // x = t³ + 9t − 4: its root in `f64` (0.4358…) puts the point 1e-16 or so off x = 0,
+        // more than `f64::EPSILON`, so tiny-skia searches between the extrema and
+        // inflections; its `approximately_equal_half` has no `abs` (Skia's has), so a point
+        // at a smaller `t` of a cubic increasing in x and y always looks the same and the
+        // search gives up: no cut (the clipper then takes `mono_cubic_closest_t`).
+        let p = |x: f32, y: f32| SkPoint::from_xy(x, y);
+        let src = [p(-4.0, 0.0), p(-1.0, 3.0), p(2.0, 6.0), p(6.0, 10.0)];
+        let mut dst = [SkPoint::zero(); 7];
+        assert!(!chop_mono_cubic_at_x(&src, 0.0, &mut dst));
+        assert!(!approximately_equal_half(1.0, 0.0));
+        assert!(approximately_equal_half(0.0, 1.0));
+    }
+}

@@ -1,7 +1,10 @@
-//! tiny-skia's fill of a path that stays inside its mask, without anti-aliasing, computed
-//! with tiny-skia's own arithmetic but without its edge list, pipeline and mask: the
-//! render check's fills ([`super::render_check::painted_in`]) where tiny-skia would not
-//! clip the path.
+//! tiny-skia's fill of a path in its mask, without anti-aliasing, computed with tiny-skia's
+//! own arithmetic but without its edge list, pipeline and mask: the render check's fills
+//! ([`super::render_check::painted_in`]) but for arcs and absurd coordinates.
+//!
+//! Where tiny-skia clips the path (its bounds, rounded out, leave the mask, or curves are
+//! drawn the clipped way), every edge goes through a port of its edge clipper first
+//! ([`super::scan_edges`]).
 //!
 //! The edges' row crossings come from [`super::edges`], with tiny-skia's fixed point. The
 //! scan walker (`walk_edges`) takes a row's edges by x and, for the nonzero rule,
@@ -14,7 +17,7 @@
 
 use super::edges::{Crossing, Crossings, Tag};
 use super::render_check::{Reference, Window};
-use super::scan_edges::{clips, path_bounds, Draw, Moved, CUBIC, QUAD};
+use super::scan_edges::{clips, contained, path_bounds, Draw, Moved, Stop, CUBIC, QUAD};
 use crate::curve::PathCommand;
 use kurbo::Point;
 use tiny_skia_path::Point as SkPoint;
@@ -26,18 +29,15 @@ const MAX_WINDOW: i64 = 8191;
 
 /// The row-major indices, in the window `win`, of the pixels tiny-skia paints filling the
 /// path `M start commands Z` followed by `reference` reversed (see
-/// [`super::render_check::painted_in`]), curves drawn `clipped` or not. Inside the window
-/// tiny-skia's edge clipper only cuts curves where they turn in x as well as in y.
+/// [`super::render_check::painted_in`]), curves drawn `clipped` or not. Where tiny-skia
+/// clips the path ([`super::scan_edges::clips`], or `clipped`), each edge is clipped to
+/// the window as its edge clipper clips it ([`super::line_clip`], [`super::curve_clip`]):
+/// the path may leave the window (Chromium's tiles and the document's edge cut contours
+/// so).
 ///
-/// Returns `None` when that is not what tiny-skia would do here: a point (control points
-/// included) not finite, outside the window, or less than a pixel inside it on a path with
-/// curves (a conservative test: tiny-skia clips the path when its bounds, rounded out by
-/// about half a pixel, leave the mask, and its edge clipper cuts curves there), an arc, or
-/// a window over [`MAX_WINDOW`] pixels. Lines inside the window, its sides included (a
-/// contour along the document's edge, in a window cut there), the clipper leaves as they
-/// are. A path of lines drawn `clipped` may leave the window: tiny-skia's clipper then
-/// runs on every edge, and each line is clipped as it clips it
-/// ([`super::line_clip`]; Chromium's tiles cut contours so).
+/// Returns `None` for an arc, a point (control points included) not finite or more than
+/// [`MAX_CLIPPED`] px from the window's corner, a window over [`MAX_WINDOW`] pixels, and
+/// where tiny-skia's edge clipper would panic (see [`super::curve_clip::clip_cubic`]).
 pub(super) fn painted(
     reference: &Reference,
     start: Point,
@@ -63,6 +63,10 @@ pub(super) fn painted(
 ///
 /// The moved fills are scanned first, then the path as it is; with `first_only`, the first
 /// that paints a pixel ends the scan (the fills after it are left empty).
+///
+/// Each fill is clipped where tiny-skia clips its path; an edge that a clipped fill cuts
+/// (it comes within a pixel of the window's sides) or that the fills do not draw alike is
+/// scanned once for each fill.
 ///
 /// Returns `None` where [`painted`] would for any of the three paths, and when a moved
 /// point is not the point moved exactly in `f32` (off the 1/64 grid, or `shift` not a
@@ -191,38 +195,84 @@ fn painted_with<const FILLS: usize>(
     };
     let d = [0.0, f64::from(k64) / 64.0, -f64::from(k64) / 64.0];
     let offsets = [0, k64 << 10, -(k64 << 10)];
+    let (wf, hf) = (w as f32, h as f32);
     // As `difference_path` hands the points to tiny-skia (a moved path is moved first).
     // (Far within `f32`'s range: tiny-skia fills nothing where the path's bounds in whole
-    // pixels overflow `i32`, or its coordinates are near `f32::MAX`.)
-    let near = |x: f64, y: f64| x.abs() <= MAX_CLIPPED && y.abs() <= MAX_CLIPPED;
-    let at = |p: Point| -> Option<SkPoint> {
+    // pixels overflow `i32`, or its coordinates are near `f32::MAX`.) With `guard`, a point
+    // outside the region where tiny-skia leaves a path unclipped ([`contained`]) stops the
+    // scan.
+    let at = |p: Point, guard: bool| -> Result<SkPoint, Stop> {
         let (x, y) = (p.x - dx, p.y - dy);
-        near(x, y).then(|| SkPoint::from_xy(x as f32, y as f32))
+        if !(x.abs() <= MAX_CLIPPED && y.abs() <= MAX_CLIPPED) {
+            return Err(Stop::GiveUp);
+        }
+        let q = SkPoint::from_xy(x as f32, y as f32);
+        if guard && !(contained(q.x, wf) && contained(q.y, hf)) {
+            return Err(Stop::Clips);
+        }
+        Ok(q)
     };
-    let moved = |p: Point| -> Option<Moved> {
-        let plain = at(p)?;
+    let moved = |p: Point, guard: bool| -> Result<Moved, Stop> {
+        let plain = at(p, guard)?;
         let mut out = [plain; 3];
         for k in 1..FILLS {
             let x = (p.x + d[k]) - dx;
-            if !near(x, 0.0) || f64::from(x as f32) != f64::from(plain.x) + d[k] {
-                return None;
+            if x.abs() > MAX_CLIPPED || f64::from(x as f32) != f64::from(plain.x) + d[k] {
+                return Err(Stop::GiveUp);
             }
             out[k].x = x as f32;
+            if guard && !contained(out[k].x, wf) {
+                return Err(Stop::Clips);
+            }
         }
-        Some(out)
+        Ok(out)
     };
-    let mut clip = [clipped; 3];
-    if !clipped {
-        let (lo, hi) = path_bounds(start, commands);
-        for k in 0..FILLS {
-            let (lo, hi) = (Point::new(lo.x + d[k], lo.y), Point::new(hi.x + d[k], hi.y));
-            clip[k] = clips(
-                [lo, hi, reference.lo, reference.hi]
-                    .map(|p| SkPoint::from_xy((p.x - dx) as f32, (p.y - dy) as f32)),
-                (w, h),
-            );
+    // The edges of every fill, each fill clipped where `clip` says; with `guard`, none is,
+    // and a point that would make tiny-skia clip a fill stops the scan.
+    let build = |edges: &mut Crossings, clip: [bool; 3], guard: bool| -> Result<(), Stop> {
+        let draw = Draw {
+            fills: FILLS,
+            clip,
+            mask: (wf, hf),
+        };
+        let first = moved(start, guard)?;
+        let mut pen = first;
+        for c in commands {
+            pen = match *c {
+                PathCommand::Line(p) => {
+                    let q = moved(p, guard)?;
+                    draw.line(edges, [pen, q], Tag::SHARED);
+                    q
+                }
+                PathCommand::Quad(a, p) => {
+                    let (a, q) = (moved(a, guard)?, moved(p, guard)?);
+                    if !draw.curve(edges, [pen, a, q], &QUAD) {
+                        return Err(Stop::GiveUp);
+                    }
+                    q
+                }
+                PathCommand::Cubic(a, b, p) => {
+                    let (a, b, q) = (moved(a, guard)?, moved(b, guard)?, moved(p, guard)?);
+                    if !draw.curve(edges, [pen, a, b, q], &CUBIC) {
+                        return Err(Stop::GiveUp);
+                    }
+                    q
+                }
+                PathCommand::Arc(_) => return Err(Stop::GiveUp),
+            };
         }
-    }
+        draw.line(edges, [pen, first], Tag::SHARED);
+        // The reference reversed: from its start through its vertices backwards, closed.
+        let rstart = at(reference.start, guard)?;
+        let mut pen = rstart;
+        for &p in reference.vertices.iter().rev() {
+            let q = at(p, guard)?;
+            draw.line(edges, [[pen; 3], [q; 3]], Tag::FIXED);
+            pen = q;
+        }
+        draw.line(edges, [[pen; 3], [rstart; 3]], Tag::FIXED);
+        Ok(())
+    };
     scratch.out.clear();
     let mut edges = Crossings {
         out: std::mem::take(&mut scratch.out),
@@ -230,47 +280,33 @@ fn painted_with<const FILLS: usize>(
         tag: Tag::SHARED,
         x_chops: clipped,
     };
-    let draw = Draw {
-        fills: FILLS,
-        clip,
-        mask: (w as f32, h as f32),
+    // Drawn the clipped way, `mask_fill`'s sliver outside the mask makes tiny-skia clip
+    // every fill. Else a fill is clipped where its path's bounds leave the mask: rarely, so
+    // the edges are first built unclipped, and built again, each fill clipped where its
+    // bounds say ([`clips`]), when a point lies where tiny-skia would clip.
+    let built = if clipped {
+        build(&mut edges, [true; 3], false)
+    } else {
+        match build(&mut edges, [false; 3], true) {
+            Err(Stop::Clips) => {
+                edges.out.clear();
+                edges.tag = Tag::SHARED;
+                let (lo, hi) = path_bounds(start, commands);
+                let mut clip = [false; 3];
+                for (k, c) in clip.iter_mut().enumerate().take(FILLS) {
+                    let (lo, hi) = (Point::new(lo.x + d[k], lo.y), Point::new(hi.x + d[k], hi.y));
+                    *c = clips(
+                        [lo, hi, reference.lo, reference.hi]
+                            .map(|p| SkPoint::from_xy((p.x - dx) as f32, (p.y - dy) as f32)),
+                        (w, h),
+                    );
+                }
+                build(&mut edges, clip, false)
+            }
+            built => built,
+        }
     };
-    let first = moved(start)?;
-    let mut pen = first;
-    for c in commands {
-        pen = match *c {
-            PathCommand::Line(p) => {
-                let q = moved(p)?;
-                draw.line(&mut edges, [pen, q], Tag::SHARED);
-                q
-            }
-            PathCommand::Quad(a, p) => {
-                let (a, q) = (moved(a)?, moved(p)?);
-                if !draw.curve(&mut edges, [pen, a, q], &QUAD) {
-                    return None;
-                }
-                q
-            }
-            PathCommand::Cubic(a, b, p) => {
-                let (a, b, q) = (moved(a)?, moved(b)?, moved(p)?);
-                if !draw.curve(&mut edges, [pen, a, b, q], &CUBIC) {
-                    return None;
-                }
-                q
-            }
-            PathCommand::Arc(_) => return None,
-        };
-    }
-    draw.line(&mut edges, [pen, first], Tag::SHARED);
-    // The reference reversed: from its start through its vertices backwards, closed.
-    let rstart = at(reference.start)?;
-    let mut pen = rstart;
-    for &p in reference.vertices.iter().rev() {
-        let q = at(p)?;
-        draw.line(&mut edges, [[pen; 3], [q; 3]], Tag::FIXED);
-        pen = q;
-    }
-    draw.line(&mut edges, [[pen; 3], [rstart; 3]], Tag::FIXED);
+    built.ok()?;
     // By row (a counting sort: a large contour's crack polygon crosses thousands of rows a
     // few times each), then by x within each row.
     scratch.out = edges.out;

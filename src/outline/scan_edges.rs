@@ -60,6 +60,25 @@ pub(super) fn clips(points: [SkPoint; 4], (w, h): (i64, i64)) -> bool {
     !contained
 }
 
+/// Whether a coordinate `v` (`f32`, as tiny-skia gets it) of a path lies where tiny-skia
+/// leaves the path unclipped along a side of the mask `len` px long: within
+/// `(−0.4765625, len + 0.4765625)`, the coordinates whose conservative rounding
+/// (`ceil(v − 0.5 − 1.5/64)`, `floor(v + 0.5 + 1.5/64)`, in `f64`, see [`clips`]) lies in
+/// `[0, len]` (`v ∓ 0.5234375` is exact in `f64`). Not a number: false.
+#[inline]
+pub(super) fn contained(v: f32, len: f32) -> bool {
+    const IN: f32 = 1.0 - CONSERVATIVE_ROUND_BIAS as f32;
+    v > -IN && v < len + IN
+}
+
+/// Why the edges of a scan were not all built.
+pub(super) enum Stop {
+    /// The scan does not apply (see [`super::scan::painted`]).
+    GiveUp,
+    /// A point lies where tiny-skia would clip the path, in a scan built unclipped.
+    Clips,
+}
+
 /// How the edges of one scan are drawn: in `fills` fills, each clipped to `mask` (its
 /// width and height) as tiny-skia's edge clipper clips it where `clip` says.
 pub(super) struct Draw {
@@ -111,6 +130,7 @@ fn clipped_edge(edges: &mut Crossings, c: Clipped) {
 
 impl Draw {
     /// Whether every point, in every fill, lies within `margin` px inside the mask.
+    #[inline]
     fn inside<const P: usize>(&self, p: &[Moved; P], margin: f32) -> bool {
         let (w, h) = self.mask;
         p.iter().all(|m| {
@@ -123,15 +143,16 @@ impl Draw {
     /// The line `p` in each fill: once for all (`shared`: [`Tag::SHARED`] for the path's,
     /// moving with it, [`Tag::FIXED`] for the reference's) where every fill draws it
     /// alike, else once per fill.
+    #[inline]
     pub(super) fn line(&self, edges: &mut Crossings, p: [Moved; 2], shared: Tag) {
-        let clip = &self.clip[..self.fills];
         edges.tag = shared;
-        if clip.iter().all(|&c| !c) {
+        let clip = &self.clip[..self.fills];
+        // Inside the mask, on its sides included, the clipper leaves a line as it is (a
+        // horizontal line on the top or bottom, which it drops, covers no row).
+        if clip.iter().all(|&c| !c) || (clip.iter().all(|&c| c) && self.inside(&p, 0.0)) {
             edges.line(p[0][0], p[1][0]);
-        } else if clip.iter().all(|&c| c) && (shared == Tag::FIXED || self.inside(&p, 0.0)) {
-            // Inside the mask, on its sides included, the clipper leaves a line as it is (a
-            // horizontal line on the top or bottom, which it drops, covers no row); the
-            // reference's is the same in every fill.
+        } else if clip.iter().all(|&c| c) && shared == Tag::FIXED {
+            // The reference's: the same in every fill.
             clip_line([p[0][0], p[1][0]], self.mask, |a, b| edges.line(a, b));
         } else {
             for k in 0..self.fills {
@@ -148,12 +169,13 @@ impl Draw {
         }
     }
 
-    /// The curve `p` of `kind` in each fill: as today's scan where no fill is clipped, or
+    /// The curve `p` of `kind` in each fill: unclipped where no fill is clipped, or where
     /// every fill is and the curve lies a pixel inside the mask in each (the clipper then
     /// only cuts it where it turns in x, [`Crossings::x_chops`]); else once per fill,
     /// through the clipper where that fill is clipped. False where tiny-skia would panic
     /// (the crossings are then not its).
     #[must_use]
+    #[inline]
     pub(super) fn curve<const P: usize>(
         &self,
         edges: &mut Crossings,
@@ -164,7 +186,7 @@ impl Draw {
         if clip.iter().all(|&c| !c) {
             edges.x_chops = false;
             (kind.in_fills)(edges, p, self.fills);
-        } else if self.fills > 1 && clip.iter().all(|&c| c) && self.inside(&p, 1.0) {
+        } else if clip.iter().all(|&c| c) && self.inside(&p, 1.0) {
             edges.x_chops = true;
             (kind.in_fills)(edges, p, self.fills);
         } else {
@@ -340,6 +362,25 @@ mod tests {
             }
             // Left to tiny-skia only where it panics on one of the three.
             prop_assert_eq!(all.is_none(), panics);
+        }
+    }
+
+    #[test]
+    fn contained_coordinates_are_those_rounded_into_the_mask() {
+        let lo = SkPoint::from_xy(0.0, 0.0);
+        for len in [1i64, 7, 256, 8191] {
+            for k in -2000i32..2000 {
+                for v in [
+                    k as f32 / 1024.0,
+                    len as f32 + k as f32 / 1024.0,
+                    (k as f32 / 1024.0).next_up(),
+                    (len as f32 + k as f32 / 1024.0).next_down(),
+                ] {
+                    let p = SkPoint::from_xy(v, v);
+                    let rounded_in = !clips([p, lo, lo, lo], (len, len));
+                    assert_eq!(contained(v, len as f32), rounded_in, "{v} in {len}");
+                }
+            }
         }
     }
 
