@@ -230,11 +230,7 @@ fn painted_with<const FILLS: usize>(
     // The edges of every fill, each fill clipped where `clip` says; with `guard`, none is,
     // and a point that would make tiny-skia clip a fill stops the scan.
     let build = |edges: &mut Crossings, clip: [bool; 3], guard: bool| -> Result<(), Stop> {
-        let draw = Draw {
-            fills: FILLS,
-            clip,
-            mask: (wf, hf),
-        };
+        let draw = Draw::new(FILLS, clip, (wf, hf));
         let first = moved(start, guard)?;
         let mut pen = first;
         for c in commands {

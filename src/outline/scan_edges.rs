@@ -83,11 +83,15 @@ pub(super) enum Stop {
 /// width and height) as tiny-skia's edge clipper clips it where `clip` says.
 pub(super) struct Draw {
     /// How many fills (1 or 3).
-    pub(super) fills: usize,
+    fills: usize,
     /// Whether tiny-skia clips each fill.
-    pub(super) clip: [bool; 3],
+    clip: [bool; 3],
     /// The mask's width and height.
-    pub(super) mask: (f32, f32),
+    mask: (f32, f32),
+    /// No fill is clipped.
+    none: bool,
+    /// Every fill is clipped.
+    all: bool,
 }
 
 /// The set-up of one kind of curve of `P` points.
@@ -129,6 +133,18 @@ fn clipped_edge(edges: &mut Crossings, c: Clipped) {
 }
 
 impl Draw {
+    /// How edges are drawn in `fills` fills, each clipped to `mask` where `clip` says.
+    pub(super) fn new(fills: usize, clip: [bool; 3], mask: (f32, f32)) -> Draw {
+        let clip_of = &clip[..fills];
+        Draw {
+            fills,
+            clip,
+            mask,
+            none: clip_of.iter().all(|&c| !c),
+            all: clip_of.iter().all(|&c| c),
+        }
+    }
+
     /// Whether every point, in every fill, lies within `margin` px inside the mask.
     #[inline]
     fn inside<const P: usize>(&self, p: &[Moved; P], margin: f32) -> bool {
@@ -146,12 +162,11 @@ impl Draw {
     #[inline]
     pub(super) fn line(&self, edges: &mut Crossings, p: [Moved; 2], shared: Tag) {
         edges.tag = shared;
-        let clip = &self.clip[..self.fills];
         // Inside the mask, on its sides included, the clipper leaves a line as it is (a
         // horizontal line on the top or bottom, which it drops, covers no row).
-        if clip.iter().all(|&c| !c) || (clip.iter().all(|&c| c) && self.inside(&p, 0.0)) {
+        if self.none || (self.all && self.inside(&p, 0.0)) {
             edges.line(p[0][0], p[1][0]);
-        } else if clip.iter().all(|&c| c) && shared == Tag::FIXED {
+        } else if self.all && shared == Tag::FIXED {
             // The reference's: the same in every fill.
             clip_line([p[0][0], p[1][0]], self.mask, |a, b| edges.line(a, b));
         } else {
@@ -182,11 +197,10 @@ impl Draw {
         p: [Moved; P],
         kind: &CurveKind<P>,
     ) -> bool {
-        let clip = &self.clip[..self.fills];
-        if clip.iter().all(|&c| !c) {
+        if self.none {
             edges.x_chops = false;
             (kind.in_fills)(edges, p, self.fills);
-        } else if clip.iter().all(|&c| c) && self.inside(&p, 1.0) {
+        } else if self.all && self.inside(&p, 1.0) {
             edges.x_chops = true;
             (kind.in_fills)(edges, p, self.fills);
         } else {
