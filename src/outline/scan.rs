@@ -269,6 +269,43 @@ fn painted_with<const FILLS: usize>(
         draw.line(edges, [[pen; 3], [rstart; 3]], Tag::FIXED);
         Ok(())
     };
+    // The edges of every fill, none clipped, as directly as before the clipper's port: a
+    // point that would make tiny-skia clip a fill stops the scan ([`Stop::Clips`]).
+    let build_plain = |edges: &mut Crossings| -> Result<(), Stop> {
+        let first = moved(start, true)?;
+        let mut pen = first;
+        for c in commands {
+            pen = match *c {
+                PathCommand::Line(p) => {
+                    let q = moved(p, true)?;
+                    edges.line(pen[0], q[0]);
+                    q
+                }
+                PathCommand::Quad(a, p) => {
+                    let (a, q) = (moved(a, true)?, moved(p, true)?);
+                    edges.quad_in_fills(|k| [pen[k], a[k], q[k]], FILLS);
+                    q
+                }
+                PathCommand::Cubic(a, b, p) => {
+                    let (a, b, q) = (moved(a, true)?, moved(b, true)?, moved(p, true)?);
+                    edges.cubic_in_fills(|k| [pen[k], a[k], b[k], q[k]], FILLS);
+                    q
+                }
+                PathCommand::Arc(_) => return Err(Stop::GiveUp),
+            };
+        }
+        edges.line(pen[0], first[0]);
+        edges.tag = Tag::FIXED;
+        let rstart = at(reference.start, true)?;
+        let mut pen = rstart;
+        for &p in reference.vertices.iter().rev() {
+            let q = at(p, true)?;
+            edges.line(pen, q);
+            pen = q;
+        }
+        edges.line(pen, rstart);
+        Ok(())
+    };
     scratch.out.clear();
     let mut edges = Crossings {
         out: std::mem::take(&mut scratch.out),
@@ -283,7 +320,7 @@ fn painted_with<const FILLS: usize>(
     let built = if clipped {
         build(&mut edges, [true; 3], false)
     } else {
-        match build(&mut edges, [false; 3], true) {
+        match build_plain(&mut edges) {
             Err(Stop::Clips) => {
                 edges.out.clear();
                 edges.tag = Tag::SHARED;
