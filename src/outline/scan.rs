@@ -227,28 +227,27 @@ fn painted_with<const FILLS: usize>(
         }
         Ok(out)
     };
-    // The edges of every fill, each fill clipped where `clip` says; with `guard`, none is,
-    // and a point that would make tiny-skia clip a fill stops the scan.
-    let build = |edges: &mut Crossings, clip: [bool; 3], guard: bool| -> Result<(), Stop> {
+    // The edges of every fill, each fill clipped where `clip` says.
+    let build = |edges: &mut Crossings, clip: [bool; 3]| -> Result<(), Stop> {
         let draw = Draw::new(FILLS, clip, (wf, hf));
-        let first = moved(start, guard)?;
+        let first = moved(start, false)?;
         let mut pen = first;
         for c in commands {
             pen = match *c {
                 PathCommand::Line(p) => {
-                    let q = moved(p, guard)?;
+                    let q = moved(p, false)?;
                     draw.line(edges, [pen, q], Tag::SHARED);
                     q
                 }
                 PathCommand::Quad(a, p) => {
-                    let (a, q) = (moved(a, guard)?, moved(p, guard)?);
+                    let (a, q) = (moved(a, false)?, moved(p, false)?);
                     if !draw.curve(edges, [pen, a, q], &QUAD) {
                         return Err(Stop::GiveUp);
                     }
                     q
                 }
                 PathCommand::Cubic(a, b, p) => {
-                    let (a, b, q) = (moved(a, guard)?, moved(b, guard)?, moved(p, guard)?);
+                    let (a, b, q) = (moved(a, false)?, moved(b, false)?, moved(p, false)?);
                     if !draw.curve(edges, [pen, a, b, q], &CUBIC) {
                         return Err(Stop::GiveUp);
                     }
@@ -259,10 +258,10 @@ fn painted_with<const FILLS: usize>(
         }
         draw.line(edges, [pen, first], Tag::SHARED);
         // The reference reversed: from its start through its vertices backwards, closed.
-        let rstart = at(reference.start, guard)?;
+        let rstart = at(reference.start, false)?;
         let mut pen = rstart;
         for &p in reference.vertices.iter().rev() {
-            let q = at(p, guard)?;
+            let q = at(p, false)?;
             draw.line(edges, [[pen; 3], [q; 3]], Tag::FIXED);
             pen = q;
         }
@@ -318,7 +317,7 @@ fn painted_with<const FILLS: usize>(
     // the edges are first built unclipped, and built again, each fill clipped where its
     // bounds say ([`clips`]), when a point lies where tiny-skia would clip.
     let built = if clipped {
-        build(&mut edges, [true; 3], false)
+        build(&mut edges, [true; 3])
     } else {
         match build_plain(&mut edges) {
             Err(Stop::Clips) => {
@@ -334,7 +333,7 @@ fn painted_with<const FILLS: usize>(
                         (w, h),
                     );
                 }
-                build(&mut edges, clip, false)
+                build(&mut edges, clip)
             }
             built => built,
         }
