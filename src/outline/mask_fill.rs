@@ -1,6 +1,7 @@
 //! tiny-skia's own fill of a contour's path and its reference reversed, in a mask the size
-//! of the render check's window (where [`super::scan`] does not apply: the path leaves the
-//! window, or has arcs), with the masks' buffers reused.
+//! of the render check's window (where [`super::scan`] does not apply: the path has arcs,
+//! coordinates too far away, or a cubic on which tiny-skia's edge clipper panics), with the
+//! masks' buffers reused.
 
 use super::render_check::{Reference, Window};
 use crate::curve::PathCommand;
