@@ -178,8 +178,10 @@ pub(crate) fn has_curves(commands: &[PathCommand]) -> bool {
 /// number where no point has one.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct PathBounds {
-    lo: Point,
-    hi: Point,
+    /// The least coordinates.
+    pub(super) lo: Point,
+    /// The largest coordinates.
+    pub(super) hi: Point,
 }
 
 impl PathBounds {

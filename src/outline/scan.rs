@@ -16,8 +16,8 @@
 //! fills on random paths.
 
 use super::edges::{Crossing, Crossings, Tag};
-use super::render_check::{Reference, Window};
-use super::scan_edges::{clips, contained, path_bounds, Draw, Moved, Stop, CUBIC, QUAD};
+use super::render_check::{PathBounds, Reference, Window};
+use super::scan_edges::{clips, contained, Draw, Moved, Stop, CUBIC, QUAD};
 use crate::curve::PathCommand;
 use kurbo::Point;
 use tiny_skia_path::Point as SkPoint;
@@ -323,7 +323,7 @@ fn painted_with<const FILLS: usize>(
             Err(Stop::Clips) => {
                 edges.out.clear();
                 edges.tag = Tag::SHARED;
-                let (lo, hi) = path_bounds(start, commands);
+                let PathBounds { lo, hi } = PathBounds::of(start, commands);
                 let mut clip = [false; 3];
                 for (k, c) in clip.iter_mut().enumerate().take(FILLS) {
                     let (lo, hi) = (Point::new(lo.x + d[k], lo.y), Point::new(hi.x + d[k], hi.y));
@@ -471,7 +471,7 @@ fn sort_row<E: Copy>(line: &mut [E], at: impl Fn(&E) -> i32) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::super::render_check::{painted_by_tiny_skia, Reference, Window};
     use super::*;
     use proptest::prelude::*;
@@ -516,7 +516,7 @@ mod tests {
 
     /// The row-major indices in `win` of the pixels tiny-skia itself paints filling the
     /// path and `reference` reversed, curves drawn `clipped` or not.
-    fn tiny_skia_indices(
+    pub(in crate::outline) fn tiny_skia_indices(
         reference: &Reference,
         start: Point,
         commands: &[PathCommand],

@@ -7,38 +7,11 @@
 use super::curve_clip::{clip_cubic, clip_quad, Clipped};
 use super::edges::{Crossings, Tag};
 use super::line_clip::clip_line;
-use crate::curve::PathCommand;
-use kurbo::Point;
 use tiny_skia_path::Point as SkPoint;
 
 /// A point of the path as tiny-skia gets it in each fill of a scan: as it is, moved by
 /// `shift`, moved by `−shift` (see [`super::scan::painted_moved`]).
 pub(super) type Moved = [SkPoint; 3];
-
-/// The least and largest coordinates of the points of `M start commands Z`, control
-/// points included.
-pub(super) fn path_bounds(start: Point, commands: &[PathCommand]) -> (Point, Point) {
-    let (mut lo, mut hi) = (start, start);
-    let mut grow = |p: Point| {
-        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-    };
-    for c in commands {
-        match *c {
-            PathCommand::Line(p) | PathCommand::Arc(kurbo::SvgArc { to: p, .. }) => grow(p),
-            PathCommand::Quad(a, p) => {
-                grow(a);
-                grow(p);
-            }
-            PathCommand::Cubic(a, b, p) => {
-                grow(a);
-                grow(b);
-                grow(p);
-            }
-        }
-    }
-    (lo, hi)
-}
 
 /// tiny-skia's `CONSERVATIVE_ROUND_BIAS`: half a pixel and 1.5/64.
 const CONSERVATIVE_ROUND_BIAS: f64 = 0.5 + 1.5 / 64.0;
@@ -226,9 +199,12 @@ impl Draw {
 
 #[cfg(test)]
 mod tests {
-    use super::super::render_check::{painted_by_tiny_skia, Reference, Window};
+    use super::super::render_check::{Reference, Window};
+    use super::super::scan::tests::tiny_skia_indices;
     use super::super::scan::{painted, painted_moved};
     use super::*;
+    use crate::curve::PathCommand;
+    use kurbo::Point;
     use proptest::prelude::*;
 
     /// The window of the tests: `w × h` pixels at (100, 50).
@@ -295,21 +271,6 @@ mod tests {
         (start, commands, Reference::new(r(&refp[0]), &rc))
     }
 
-    /// The row-major indices in `win` of the pixels tiny-skia itself paints.
-    fn tiny_skia(
-        reference: &Reference,
-        start: Point,
-        commands: &[PathCommand],
-        win: &Window,
-        clipped: bool,
-    ) -> Vec<usize> {
-        let w = (win.x1 - win.x0) as usize;
-        painted_by_tiny_skia(reference, start, commands, win, &[clipped])
-            .into_iter()
-            .map(|p| (i64::from(p.y) - win.y0) as usize * w + (i64::from(p.x) - win.x0) as usize)
-            .collect()
-    }
-
     /// A point's random coordinates: a selector (sides) and a value.
     fn coords() -> impl Strategy<Value = [(u8, u16); 6]> {
         prop::array::uniform6((any::<u8>(), any::<u16>()))
@@ -335,7 +296,7 @@ mod tests {
             let (start, commands, reference) = random_path(&path, &refp, (w, h), grid, far);
             let win = window(w, h);
             let theirs = std::panic::catch_unwind(|| {
-                tiny_skia(&reference, start, &commands, &win, clipped)
+                tiny_skia_indices(&reference, start, &commands, &win, clipped)
             });
             // Left to tiny-skia only where it panics.
             let ours = painted(&reference, start, &commands, &win, clipped);
@@ -366,7 +327,7 @@ mod tests {
                 let v = kurbo::Vec2::new(d, 0.0);
                 let moved: Vec<PathCommand> = commands.iter().map(|c| c.translated(v)).collect();
                 let expected = std::panic::catch_unwind(|| {
-                    tiny_skia(&reference, start + v, &moved, &win, clipped)
+                    tiny_skia_indices(&reference, start + v, &moved, &win, clipped)
                 });
                 match (&all, expected) {
                     (Some(all), Ok(expected)) => prop_assert_eq!(&all[fill], &expected, "fill {}", fill),
