@@ -157,6 +157,16 @@ impl Draw {
         }
     }
 
+    /// Whether the points `p` all lie on or beyond one side of the mask (as `mask_fill`'s
+    /// `Segment::beyond` tells them).
+    fn beyond_a_side(&self, p: &[SkPoint]) -> bool {
+        let (w, h) = self.mask;
+        p.iter().all(|q| q.x <= 0.0)
+            || p.iter().all(|q| q.x >= w)
+            || p.iter().all(|q| q.y <= 0.0)
+            || p.iter().all(|q| q.y >= h)
+    }
+
     /// The curve `p` of `kind` in each fill: unclipped where no fill is clipped, or where
     /// every fill is and the curve lies a pixel inside the mask in each (the clipper then
     /// only cuts it where it turns in x, [`Crossings::x_chops`]); else once per fill,
@@ -182,7 +192,12 @@ impl Draw {
                     edges.tag = Tag(1 << k);
                 }
                 let pk = p.map(|m| m[k]);
-                if self.clip[k] {
+                if self.clip[k] && self.beyond_a_side(&pk) {
+                    // As `mask_fill` hands it to tiny-skia: one line (its `Collapsing`),
+                    // which the clipper turns into the same vertical line on the side,
+                    // or drops, as the curve's parts.
+                    clip_line([pk[0], pk[P - 1]], self.mask, |a, b| edges.line(a, b));
+                } else if self.clip[k] {
                     if !(kind.clip)(edges, pk, self.mask) {
                         return false;
                     }
