@@ -227,7 +227,8 @@ fn painted_with<const FILLS: usize>(
         }
         Ok(out)
     };
-    // The edges of every fill, each fill clipped where `clip` says.
+    // The edges of every fill, each fill clipped where `clip` says (one at least: scans that
+    // clip none are `build_plain`'s).
     let build = |edges: &mut Crossings, clip: [bool; 3]| -> Result<(), Stop> {
         let draw = Draw::new(FILLS, clip, (wf, hf));
         let first = moved(start, false)?;

@@ -61,8 +61,6 @@ pub(super) struct Draw {
     clip: [bool; 3],
     /// The mask's width and height.
     mask: (f32, f32),
-    /// No fill is clipped.
-    none: bool,
     /// Every fill is clipped.
     all: bool,
 }
@@ -113,7 +111,6 @@ impl Draw {
             fills,
             clip,
             mask,
-            none: clip_of.iter().all(|&c| !c),
             all: clip_of.iter().all(|&c| c),
         }
     }
@@ -137,7 +134,7 @@ impl Draw {
         edges.tag = shared;
         // Inside the mask, on its sides included, the clipper leaves a line as it is (a
         // horizontal line on the top or bottom, which it drops, covers no row).
-        if self.none || (self.all && self.inside(&p, 0.0)) {
+        if self.all && self.inside(&p, 0.0) {
             edges.line(p[0][0], p[1][0]);
         } else if self.all && shared == Tag::FIXED {
             // The reference's: the same in every fill.
@@ -167,8 +164,8 @@ impl Draw {
             || p.iter().all(|q| q.y >= h)
     }
 
-    /// The curve `p` of `kind` in each fill: unclipped where no fill is clipped, or where
-    /// every fill is and the curve lies a pixel inside the mask in each (the clipper then
+    /// The curve `p` of `kind` in each fill: once for all where every fill is clipped and
+    /// the curve lies a pixel inside the mask in each (the clipper then
     /// only cuts it where it turns in x, [`Crossings::x_chops`]); else once per fill,
     /// through the clipper where that fill is clipped. False where tiny-skia would panic
     /// (the crossings are then not its).
@@ -180,10 +177,7 @@ impl Draw {
         p: [Moved; P],
         kind: &CurveKind<P>,
     ) -> bool {
-        if self.none {
-            edges.x_chops = false;
-            (kind.in_fills)(edges, p, self.fills);
-        } else if self.all && self.inside(&p, 1.0) {
+        if self.all && self.inside(&p, 1.0) {
             edges.x_chops = true;
             (kind.in_fills)(edges, p, self.fills);
         } else {
@@ -192,13 +186,13 @@ impl Draw {
                     edges.tag = Tag(1 << k);
                 }
                 let pk = p.map(|m| m[k]);
-                if self.clip[k] && self.beyond_a_side(&pk) {
-                    // As `mask_fill` hands it to tiny-skia: one line (its `Collapsing`),
-                    // which the clipper turns into the same vertical line on the side,
-                    // or drops, as the curve's parts.
-                    clip_line([pk[0], pk[P - 1]], self.mask, |a, b| edges.line(a, b));
-                } else if self.clip[k] {
-                    if !(kind.clip)(edges, pk, self.mask) {
+                if self.clip[k] {
+                    if self.beyond_a_side(&pk) {
+                        // As `mask_fill` hands it to tiny-skia: one line (its `Collapsing`),
+                        // which the clipper turns into the same vertical line on the side,
+                        // or drops, as the curve's parts.
+                        clip_line([pk[0], pk[P - 1]], self.mask, |a, b| edges.line(a, b));
+                    } else if !(kind.clip)(edges, pk, self.mask) {
                         return false;
                     }
                 } else {
