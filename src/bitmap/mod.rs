@@ -28,6 +28,7 @@ mod otsu;
 mod png;
 #[cfg(test)]
 mod tests;
+mod unfilter;
 
 pub use band::{border_distance, distance_where, Band, MAX_BAND};
 pub use clean::Cleaned;

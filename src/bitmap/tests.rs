@@ -90,6 +90,8 @@ struct Png {
     color: u8,
     depth: u8,
     interlaced: bool,
+    /// Line `k` of each pass filtered with filter type `k % 5` (else none).
+    filtered: bool,
     palette: Vec<u8>,
     trns: Vec<u8>,
 }
@@ -125,8 +127,11 @@ impl Png {
             if xs_.is_empty() {
                 continue;
             }
-            for y in (y0..self.height).step_by(ys as usize) {
-                raw.push(0); // filter: none
+            // Bytes per pixel for the filters (at least 1).
+            let bpp = (self.channels() * usize::from(self.depth)).div_ceil(8);
+            let mut above: Vec<u8> = Vec::new();
+            for (k, y) in (y0..self.height).step_by(ys as usize).enumerate() {
+                let row_start = raw.len();
                 let (mut acc, mut bits) = (0u32, 0u32);
                 for &x in &xs_ {
                     for c in 0..self.channels() {
@@ -148,6 +153,12 @@ impl Png {
                 if bits > 0 {
                     raw.push((acc << (8 - bits)) as u8);
                 }
+                let line = raw.split_off(row_start);
+                let filter = if self.filtered { (k % 5) as u8 } else { 0 };
+                above.resize(line.len(), 0);
+                raw.push(filter);
+                raw.extend(filter_row(filter, bpp, &above, &line));
+                above = line;
             }
         }
         let mut z = vec![0x78, 0x01];
@@ -182,6 +193,39 @@ impl Png {
     }
 }
 
+/// `line` filtered with `filter` against the line `above` (PNG specification, section 7.3).
+fn filter_row(filter: u8, bpp: usize, above: &[u8], line: &[u8]) -> Vec<u8> {
+    (0..line.len())
+        .map(|i| {
+            let a = if i >= bpp { line[i - bpp] } else { 0 };
+            let c = if i >= bpp { above[i - bpp] } else { 0 };
+            let b = above[i];
+            let predictor = match filter {
+                0 => 0,
+                1 => a,
+                2 => b,
+                3 => ((u16::from(a) + u16::from(b)) / 2) as u8,
+                _ => {
+                    let p = i16::from(a) + i16::from(b) - i16::from(c);
+                    let (pa, pb, pc) = (
+                        (p - i16::from(a)).abs(),
+                        (p - i16::from(b)).abs(),
+                        (p - i16::from(c)).abs(),
+                    );
+                    if pa <= pb && pa <= pc {
+                        a
+                    } else if pb <= pc {
+                        b
+                    } else {
+                        c
+                    }
+                }
+            };
+            line[i].wrapping_sub(predictor)
+        })
+        .collect()
+}
+
 fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
     out.extend_from_slice(&(data.len() as u32).to_be_bytes());
     let start = out.len();
@@ -212,11 +256,25 @@ fn sample(depth: u8, seed: u64) -> impl Fn(u32, u32, usize) -> u16 {
     }
 }
 
+/// Flat blocks 20 pixels wide (every filter stores long runs of zeros there, see
+/// `unfilter`), every third one pseudo-random.
+fn blocks(depth: u8, seed: u64) -> impl Fn(u32, u32, usize) -> u16 {
+    let noise = sample(depth, seed);
+    move |x, y, c| {
+        let max = (1u32 << depth) - 1;
+        match (x / 20 + y / 4) % 3 {
+            0 => noise(x, y, c),
+            1 => max as u16,
+            _ => (max / 3) as u16,
+        }
+    }
+}
+
 #[test]
 fn generated_pngs_as_before() {
     let mut cases = 0;
-    for (w, h) in [(37, 29), (1, 1), (3, 2), (9, 1), (1, 9), (16, 16)] {
-        for interlaced in [false, true] {
+    for (w, h) in [(37, 29), (1, 1), (3, 2), (9, 1), (1, 9), (16, 16), (90, 13)] {
+        for (interlaced, filtered) in [(false, false), (true, false), (false, true), (true, true)] {
             for (color, depths) in [
                 (0u8, &[1u8, 2, 4, 8, 16][..]),
                 (2, &[8, 16][..]),
@@ -236,6 +294,7 @@ fn generated_pngs_as_before() {
                             color,
                             depth,
                             interlaced,
+                            filtered,
                             palette: Vec::new(),
                             trns: Vec::new(),
                         };
@@ -253,19 +312,25 @@ fn generated_pngs_as_before() {
                                 _ => (0..colours).map(|i| (i * 53 % 256) as u8).collect(),
                             };
                         }
-                        let bytes = png.encode(sample(depth, 7));
-                        let what = format!(
-                            "{w}x{h} colour {color} depth {depth} trns {with_trns} \
-                             interlaced {interlaced}"
-                        );
-                        assert_same_as_whole_image(&bytes, &what);
-                        cases += 1;
+                        for flat in [false, true] {
+                            let bytes = if flat {
+                                png.encode(blocks(depth, 7))
+                            } else {
+                                png.encode(sample(depth, 7))
+                            };
+                            let what = format!(
+                                "{w}x{h} colour {color} depth {depth} trns {with_trns} \
+                             interlaced {interlaced} filtered {filtered}"
+                            );
+                            assert_same_as_whole_image(&bytes, &format!("{what} flat {flat}"));
+                            cases += 1;
+                        }
                     }
                 }
             }
         }
     }
-    assert!(cases > 200, "{cases}");
+    assert!(cases > 900, "{cases}");
 }
 
 #[test]
@@ -312,6 +377,7 @@ fn truncated_pngs_and_jpegs_say_so() {
         color: 6,
         depth: 8,
         interlaced: false,
+        filtered: true,
         palette: Vec::new(),
         trns: Vec::new(),
     }
@@ -330,6 +396,39 @@ fn truncated_pngs_and_jpegs_say_so() {
             assert!(matches!(e, Error::Truncated { .. }), "{percent}%: {e}");
             assert!(e.to_string().contains("truncated"), "{e}");
         }
+    }
+}
+
+#[test]
+fn unknown_filter_types_are_decode_errors() {
+    // Grey rows are unfiltered by `unfilter`, palette rows by the png crate.
+    for color in [0u8, 3] {
+        let mut png = Png {
+            width: 8,
+            height: 4,
+            color,
+            depth: 8,
+            interlaced: false,
+            filtered: false,
+            palette: if color == 3 {
+                (0..768).map(|i| (i % 256) as u8).collect()
+            } else {
+                Vec::new()
+            },
+            trns: Vec::new(),
+        }
+        .encode(sample(8, 1));
+        assert!(load_memory(&png, &LoadOptions::default()).is_ok());
+        // The IDAT's data is stored: the second row's filter byte follows the zlib header
+        // (2 bytes), the block's header (5) and the first row (9).
+        let at = png.windows(4).position(|w| w == b"IDAT").unwrap();
+        let len = u32::from_be_bytes(png[at - 4..at].try_into().unwrap()) as usize;
+        png[at + 4 + 2 + 5 + 9] = 9;
+        let crc = crc32fast::hash(&png[at..at + 4 + len]);
+        png[at + 4 + len..at + 8 + len].copy_from_slice(&crc.to_be_bytes());
+        let e = load_memory(&png, &LoadOptions::default()).unwrap_err();
+        assert!(matches!(e, Error::Decode { .. }), "colour {color}: {e}");
+        assert!(e.to_string().contains("filter"), "colour {color}: {e}");
     }
 }
 
