@@ -157,7 +157,7 @@ impl Png {
                 let filter = if self.filtered { (k % 5) as u8 } else { 0 };
                 above.resize(line.len(), 0);
                 raw.push(filter);
-                raw.extend(filter_row(filter, bpp, &above, &line));
+                raw.extend(super::unfilter::spec::filtered(filter, bpp, &above, &line));
                 above = line;
             }
         }
@@ -191,39 +191,6 @@ impl Png {
         chunk(&mut out, b"IEND", &[]);
         out
     }
-}
-
-/// `line` filtered with `filter` against the line `above` (PNG specification, section 7.3).
-fn filter_row(filter: u8, bpp: usize, above: &[u8], line: &[u8]) -> Vec<u8> {
-    (0..line.len())
-        .map(|i| {
-            let a = if i >= bpp { line[i - bpp] } else { 0 };
-            let c = if i >= bpp { above[i - bpp] } else { 0 };
-            let b = above[i];
-            let predictor = match filter {
-                0 => 0,
-                1 => a,
-                2 => b,
-                3 => ((u16::from(a) + u16::from(b)) / 2) as u8,
-                _ => {
-                    let p = i16::from(a) + i16::from(b) - i16::from(c);
-                    let (pa, pb, pc) = (
-                        (p - i16::from(a)).abs(),
-                        (p - i16::from(b)).abs(),
-                        (p - i16::from(c)).abs(),
-                    );
-                    if pa <= pb && pa <= pc {
-                        a
-                    } else if pb <= pc {
-                        b
-                    } else {
-                        c
-                    }
-                }
-            };
-            line[i].wrapping_sub(predictor)
-        })
-        .collect()
 }
 
 fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {

@@ -141,11 +141,10 @@ fn chained<const BPP: usize, const F: u8>(prev: &[u8], cur: &mut [u8]) {
     }
 }
 
+/// The specification's filters, byte by byte: what the tests compare with (and the test
+/// PNG writer filters with).
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use proptest::prelude::*;
-
+pub(super) mod spec {
     /// The specification's predictor of filter `filter`.
     fn predictor(filter: u8, a: u8, b: u8, c: u8) -> u8 {
         match filter {
@@ -172,7 +171,7 @@ mod tests {
     }
 
     /// The specification's unfiltering, byte by byte.
-    fn plain(filter: u8, bpp: usize, prev: &[u8], cur: &mut [u8]) {
+    pub(in crate::bitmap) fn plain(filter: u8, bpp: usize, prev: &[u8], cur: &mut [u8]) {
         for i in 0..cur.len() {
             let (a, c) = if i >= bpp {
                 (cur[i - bpp], prev[i - bpp])
@@ -184,7 +183,12 @@ mod tests {
     }
 
     /// `line` filtered against `above` as an encoder does.
-    fn filtered(filter: u8, bpp: usize, above: &[u8], line: &[u8]) -> Vec<u8> {
+    pub(in crate::bitmap) fn filtered(
+        filter: u8,
+        bpp: usize,
+        above: &[u8],
+        line: &[u8],
+    ) -> Vec<u8> {
         (0..line.len())
             .map(|i| {
                 let (a, c) = if i >= bpp {
@@ -196,6 +200,13 @@ mod tests {
             })
             .collect()
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::spec::{filtered, plain};
+    use super::*;
+    use proptest::prelude::*;
 
     /// Bytes mostly from a few values and zeros, in runs, so that flat chunks occur and end
     /// anywhere.
