@@ -1,5 +1,7 @@
 //! Turning decoded pixels into grey levels, by layertrace's convention or the IPOL reference's.
 
+use std::borrow::Cow;
+
 use image::{ColorType, DynamicImage, ImageBuffer};
 
 /// Which program's reading of the input pixels to reproduce.
@@ -64,13 +66,14 @@ pub(super) fn default_grey(img: &DynamicImage) -> Vec<u8> {
 ///
 /// 16-bit and float samples are big-endian if `big_endian` (as PNG rows are), else native.
 /// Every conversion is pixel by pixel, so a row gives the row of the whole image's grey.
+/// 8-bit grey rows are their grey levels: given back as they are, not copied.
 pub(super) fn grey_row(
     color: ColorType,
     big_endian: bool,
     width: u32,
     bytes: &[u8],
     compat: Compat,
-) -> Option<Vec<u8>> {
+) -> Option<Cow<'_, [u8]>> {
     fn u16s(bytes: &[u8], be: bool) -> Vec<u16> {
         bytes
             .chunks_exact(2)
@@ -100,7 +103,7 @@ pub(super) fn grey_row(
     let (w, be) = (width, big_endian);
     let img = match color {
         // Grey stays grey whatever the convention: no conversion at all.
-        ColorType::L8 => return Some(bytes.to_vec()),
+        ColorType::L8 => return Some(Cow::Borrowed(bytes)),
         ColorType::La8 => DynamicImage::ImageLumaA8(ImageBuffer::from_raw(w, 1, bytes.to_vec())?),
         ColorType::Rgb8 => DynamicImage::ImageRgb8(ImageBuffer::from_raw(w, 1, bytes.to_vec())?),
         ColorType::Rgba8 => DynamicImage::ImageRgba8(ImageBuffer::from_raw(w, 1, bytes.to_vec())?),
@@ -120,10 +123,10 @@ pub(super) fn grey_row(
         }
         _ => return None,
     };
-    Some(match compat {
+    Some(Cow::Owned(match compat {
         Compat::Default => default_grey(&img),
         Compat::Ipol => ipol_grey(&img),
-    })
+    }))
 }
 
 /// libpng's default `rgb_to_gray` on 8-bit samples (truncating, as its no-gamma path does).

@@ -269,14 +269,9 @@ impl PlainRows {
             cur.copy_from_slice(&data[start + 1..start + stored]);
             start += stored;
             unfilter(filter, self.bpp, &prev, &mut cur).ok_or(PlainError::UnknownFilter(filter))?;
-            // (Grey rows are their grey levels: put as they are, not copied.)
-            if self.color == ColorType::L8 {
-                sink.put(y, 0, 1, &cur);
-            } else {
-                let grey = grey_row(self.color, true, self.width, &cur, self.compat)
-                    .ok_or(PlainError::BadRow)?;
-                sink.put(y, 0, 1, &grey);
-            }
+            let grey = grey_row(self.color, true, self.width, &cur, self.compat)
+                .ok_or(PlainError::BadRow)?;
+            sink.put(y, 0, 1, &grey);
             std::mem::swap(&mut prev, &mut cur);
         }
         // The rest of the image data is read and dropped, as the png crate's reader does.
