@@ -326,6 +326,45 @@ fn changes_nothing(
         })
 }
 
+/// The line from `a` to the end of `cubic` when `cubic` is straight: both control points
+/// exactly on the segment between its ends (all on the grid, so the test is exact). Returns
+/// `None` for any other command.
+fn straight(a: Point, cubic: PathCommand) -> Option<PathCommand> {
+    let PathCommand::Cubic(p1, p2, e) = cubic else {
+        return None;
+    };
+    let chord = e - a;
+    let on = |p: Point| {
+        let v = p - a;
+        chord.cross(v) == 0.0 && v.dot(chord) >= 0.0 && v.dot(chord) <= chord.hypot2()
+    };
+    (chord.hypot2() > 0.0 && on(p1) && on(p2)).then_some(PathCommand::Line(e))
+}
+
+/// Whether drawing `line` from `a` instead of `cmds` changes no pixel: the loop from the
+/// line back along the run paints nothing, robustly and in Chromium's tiles, as a merge of
+/// lines is checked ([`super::merge`]).
+fn line_changes_nothing(
+    a: Point,
+    line: PathCommand,
+    cmds: &[PathCommand],
+    clipping: EdgeClipping,
+    canvas: Option<kurbo::Rect>,
+) -> bool {
+    let lp = difference_loop(a, line, cmds);
+    let mut bounds = kurbo::Rect::from_points(a, line.end());
+    for c in cmds {
+        bounds = bounds.union_pt(c.end());
+        match *c {
+            PathCommand::Quad(q, _) => bounds = bounds.union_pt(q),
+            PathCommand::Cubic(p1, p2, _) => bounds = bounds.union_pt(p1).union_pt(p2),
+            _ => {}
+        }
+    }
+    (cutting_clips(bounds, canvas).is_empty() || loop_paints_nothing_in_tiles_moved(a, &lp, canvas))
+        && loop_paints_nothing(a, &lp, clipping, canvas, true)
+}
+
 /// The closed path `M start commands Z` with runs of two or more commands along gentle turns
 /// drawn as one cubic each where that changes no pixel (see the module documentation); the
 /// start vertex stays. Returns `None` if no run is replaced.
@@ -456,6 +495,19 @@ pub(crate) fn absorb_runs(
         }
         match best {
             Some((len, c)) => {
+                // A straight cubic is written as its line where that changes no pixel
+                // either (fewer bytes, and no curve where there is none).
+                let c = straight(vertex(j), c)
+                    .filter(|&line| {
+                        line_changes_nothing(
+                            vertex(j),
+                            line,
+                            &commands[j..j + len],
+                            clipping,
+                            canvas,
+                        )
+                    })
+                    .unwrap_or(c);
                 out.push(c);
                 j += len;
                 any = true;
@@ -479,6 +531,26 @@ mod tests {
     use crate::decompose::{decompose, OutlierRule};
     use crate::model::Model;
     use proptest::prelude::*;
+
+    #[test]
+    fn a_straight_cubic_is_its_line() {
+        let p = Point::new;
+        let a = p(40.0, 7.0);
+        // A one-pixel column's side as `absorb` once wrote it: `c0-1 0-2 0-3`.
+        let column = PathCommand::Cubic(p(40.0, 6.0), p(40.0, 5.0), p(40.0, 4.0));
+        assert_eq!(straight(a, column), Some(PathCommand::Line(p(40.0, 4.0))));
+        // Slanted, control points at the ends: straight too.
+        let slanted = PathCommand::Cubic(a, p(46.0, 10.0), p(46.0, 10.0));
+        assert_eq!(straight(a, slanted), Some(PathCommand::Line(p(46.0, 10.0))));
+        // A control point off the chord by 1/16 px, or on its line beyond an end: a curve.
+        let off = PathCommand::Cubic(p(40.0625, 6.0), p(40.0, 5.0), p(40.0, 4.0));
+        assert_eq!(straight(a, off), None);
+        let beyond = PathCommand::Cubic(p(40.0, 8.0), p(40.0, 5.0), p(40.0, 4.0));
+        assert_eq!(straight(a, beyond), None);
+        // Not a cubic, or no length.
+        assert_eq!(straight(a, PathCommand::Line(p(41.0, 7.0))), None);
+        assert_eq!(straight(a, PathCommand::Cubic(a, a, a)), None);
+    }
 
     #[test]
     fn chord_counts_are_tiny_skias() {
