@@ -501,8 +501,13 @@ fn draw_contours(
                     // The exact drawing meets the band's guarantee too: the one with fewer
                     // commands, unless the exact one has a pixel staircase.
                     Some(band) => {
-                        let exact = exact();
-                        let smooth = band_contour_path(contour, band, outline);
+                        // Counted as written: a closing line goes to `Z` (a smooth drawing
+                        // that tied with an exact one ending in a closing line was one
+                        // command longer in the document).
+                        let mut exact = exact();
+                        let mut smooth = band_contour_path(contour, band, outline);
+                        drop_closing_line(&mut exact);
+                        drop_closing_line(&mut smooth);
                         if smooth.counts().total() <= exact.counts().total()
                             || has_staircase(exact.start, &exact.commands)
                         {
