@@ -491,22 +491,23 @@ fn draw_contours(
                 let pieces = pieces_of(k);
                 let i = ways[k].unwrap_or(0);
                 let outline = &outlines[i];
+                // Each drawing as written: a closing line goes to `Z` (so that the smooth
+                // mode counts commands as the document has them: a smooth drawing that tied
+                // with an exact one ending in a closing line was one command longer).
                 let exact = || {
-                    keys[k]
+                    let mut cp = keys[k]
                         .as_ref()
                         .and_then(|key| memos[i].drawing(key, contour))
-                        .unwrap_or_else(|| contour_path(contour, pieces, &basis, outline))
+                        .unwrap_or_else(|| contour_path(contour, pieces, &basis, outline));
+                    drop_closing_line(&mut cp);
+                    cp
                 };
-                let mut cp = match band {
+                let cp = match band {
                     // The exact drawing meets the band's guarantee too: the one with fewer
                     // commands, unless the exact one has a pixel staircase.
                     Some(band) => {
-                        // Counted as written: a closing line goes to `Z` (a smooth drawing
-                        // that tied with an exact one ending in a closing line was one
-                        // command longer in the document).
-                        let mut exact = exact();
+                        let exact = exact();
                         let mut smooth = band_contour_path(contour, band, outline);
-                        drop_closing_line(&mut exact);
                         drop_closing_line(&mut smooth);
                         if smooth.counts().total() <= exact.counts().total()
                             || has_staircase(exact.start, &exact.commands)
@@ -518,7 +519,6 @@ fn draw_contours(
                     }
                     None => exact(),
                 };
-                drop_closing_line(&mut cp);
                 let mut data = String::new();
                 write_path_data(&cp, precision, shift, &mut data);
                 // Only the counts and bounds are kept: the commands are written.

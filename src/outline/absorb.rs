@@ -38,7 +38,7 @@ use super::builder::Builder;
 use super::chops::drawn_parts;
 use super::cracks::Cracks;
 use super::cubic_fit::{reparametrize, Fit, Sample};
-use super::render_check::EdgeClipping;
+use super::render_check::{EdgeClipping, PathBounds};
 use super::robust::{cubic_paints_nothing, loop_paints_nothing};
 use super::smooth::{chord_estimate, MAX_TURN_DEGREES};
 use super::tiles::{cutting_clips, loop_paints_nothing_in_tiles_moved};
@@ -352,16 +352,10 @@ fn line_changes_nothing(
     canvas: Option<kurbo::Rect>,
 ) -> bool {
     let lp = difference_loop(a, line, cmds);
-    let mut bounds = kurbo::Rect::from_points(a, line.end());
-    for c in cmds {
-        bounds = bounds.union_pt(c.end());
-        match *c {
-            PathCommand::Quad(q, _) => bounds = bounds.union_pt(q),
-            PathCommand::Cubic(p1, p2, _) => bounds = bounds.union_pt(p1).union_pt(p2),
-            _ => {}
-        }
-    }
-    (cutting_clips(bounds, canvas).is_empty() || loop_paints_nothing_in_tiles_moved(a, &lp, canvas))
+    // (The line ends where the run does: the run's bounds are the loop's.)
+    let PathBounds { lo, hi } = PathBounds::of(a, cmds);
+    (cutting_clips(kurbo::Rect::from_points(lo, hi), canvas).is_empty()
+        || loop_paints_nothing_in_tiles_moved(a, &lp, canvas))
         && loop_paints_nothing(a, &lp, clipping, canvas, true)
 }
 
