@@ -2,8 +2,8 @@
 # scripts/build_rev.sh — the layertrace binary of an earlier commit, to time side by side.
 #
 # Usage: scripts/build_rev.sh REV…
-#   REV: anything git names a commit by (a hash, a tag, HEAD~3). Prints one path per REV on
-#   standard output: target/revs/HASH/layertrace (HASH the commit's first 12 hex digits).
+#   REV: anything git names a commit by (a hash, a tag, HEAD~3). Prints one absolute path per
+#   REV on standard output: target/revs/HASH/layertrace (HASH the commit's first 12 hex digits).
 #
 # Each commit's tree is exported with `git archive` (no worktree is registered) into a
 # scratch folder and built there with that commit's own Cargo.toml and Cargo.lock
@@ -39,7 +39,9 @@ for rev in "$@"; do
     locked=()
     [ -f "$work/Cargo.lock" ] && locked=(--locked)
     log "building $short (about two minutes)"
-    (cd "$work" && cargo build --release "${locked[@]}" --quiet --bin layertrace)
+    # (Its own target folder, whatever CARGO_TARGET_DIR the caller has set.)
+    (cd "$work" && CARGO_TARGET_DIR="$work/target" \
+        cargo build --release "${locked[@]}" --quiet --bin layertrace)
     # Copied under a temporary name and renamed: an interrupted build leaves no binary to reuse.
     cp "$work/target/release/layertrace" "$out/layertrace.part"
     mv "$out/layertrace.part" "$out/layertrace"
