@@ -34,7 +34,7 @@
 //! renderer first, then shorter ones. A fit is refitted until it is within every tolerance
 //! and drawn in the chords it was fitted with, at most [`FIT_ROUNDS`] times.
 
-use super::builder::Builder;
+use super::builder::{on_segment, Builder};
 use super::chops::drawn_parts;
 use super::cracks::Cracks;
 use super::cubic_fit::{reparametrize, Fit, Sample};
@@ -333,12 +333,8 @@ fn straight(a: Point, cubic: PathCommand) -> Option<PathCommand> {
     let PathCommand::Cubic(p1, p2, e) = cubic else {
         return None;
     };
-    let chord = e - a;
-    let on = |p: Point| {
-        let v = p - a;
-        chord.cross(v) == 0.0 && v.dot(chord) >= 0.0 && v.dot(chord) <= chord.hypot2()
-    };
-    (chord.hypot2() > 0.0 && on(p1) && on(p2)).then_some(PathCommand::Line(e))
+    ((e - a).hypot2() > 0.0 && on_segment(a, e, p1) && on_segment(a, e, p2))
+        .then_some(PathCommand::Line(e))
 }
 
 /// Whether drawing `line` from `a` instead of `cmds` changes no pixel: the loop from the

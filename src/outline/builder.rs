@@ -148,11 +148,9 @@ impl Builder {
         }
         let s: Vec<Point> = pts.iter().map(|&p| self.snap(p)).collect();
         let end = s[s.len() - 1];
-        let chord = end - self.pen;
-        let straight = s[..s.len() - 1].iter().all(|&c| {
-            let v = c - self.pen;
-            v.cross(chord) == 0.0 && v.dot(chord) >= 0.0 && v.dot(chord) <= chord.hypot2()
-        });
+        let straight = s[..s.len() - 1]
+            .iter()
+            .all(|&c| on_segment(self.pen, end, c));
         if straight {
             self.goto(end);
             return;
@@ -166,6 +164,14 @@ impl Builder {
         self.line_from = None;
         self.pen = end;
     }
+}
+
+/// Whether `p` lies on the segment from `from` to `to`, ends included (exact on the grid's
+/// points; a segment of no length holds only its point).
+#[inline]
+pub(super) fn on_segment(from: Point, to: Point, p: Point) -> bool {
+    let (chord, v) = (to - from, p - from);
+    v.cross(chord) == 0.0 && v.dot(chord) >= 0.0 && v.dot(chord) <= chord.hypot2()
 }
 
 #[cfg(test)]
