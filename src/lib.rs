@@ -129,7 +129,8 @@ pub use num_bigint::BigInt;
 pub use num_rational::BigRational;
 pub use outline::{
     contour_path, BorderSource, CommandCounts, ContourPath, EdgeClipping, FallbackCounts,
-    JoinCounts, OutlineOptions, Partition, PartitionBorder, DEFAULT_MIN_CURVE_POINTS, MAX_GRID,
+    JoinCounts, OutlineOptions, Partition, PartitionBorder, DEFAULT_MAX_CURVE_POINTS,
+    DEFAULT_MIN_CURVE_POINTS, MAX_GRID,
 };
 pub use output::{
     exit_removing_temporaries, interrupt_flags, png_bytes, write_atomic, InterruptFlags, OutputId,

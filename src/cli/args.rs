@@ -122,6 +122,14 @@ pub struct Args {
     #[arg(long, value_name = "N", default_value_t = layertrace::DEFAULT_MIN_CURVE_POINTS)]
     pub min_curve_points: usize,
 
+    /// Draw a curve piece of more than N contour points as its exact polygon, smoothed with
+    /// its neighbours' and drawn in cubics along its gentle turns, without trying its curve:
+    /// long curves seldom pass the render check, and the cubics draw them in fewer commands
+    /// (less time, fewer bytes). 0 sets no limit (with --min-curve-points 0, every curve is
+    /// tried); the JSON keeps every piece's equation either way.
+    #[arg(long, value_name = "N", default_value_t = layertrace::DEFAULT_MAX_CURVE_POINTS)]
+    pub max_curve_points: usize,
+
     /// Keep the square corners of one-pixel features (lone pixels, one-pixel spurs and
     /// notches), for pixel art. By default the corners inside a pixel staircase are cut by
     /// half a pixel (a lone pixel becomes a diamond, a spur a spike), which changes no pixel

@@ -128,6 +128,7 @@ pub fn options(args: &Args, outputs: &Outputs, pool: Option<Arc<rayon::ThreadPoo
         tolerance: args.tolerance,
         min_clearance: args.min_clearance,
         min_curve_points: args.min_curve_points,
+        max_curve_points: args.max_curve_points,
         square_corners: args.square_corners,
     });
     if outputs.picture.is_some() {
@@ -348,7 +349,7 @@ fn svg_lines(out: &layertrace::SvgOutput) -> Result<String, Error> {
         c.cubic,
         c.close,
         count(
-            fb.rendered + fb.curve + fb.thin + fb.short + fb.no_polynomial,
+            fb.rendered + fb.curve + fb.thin + fb.short + fb.long + fb.no_polynomial,
             "curve piece",
             "curve pieces"
         ),

@@ -60,8 +60,15 @@ pub struct SvgOptions {
     /// A curve piece (not a line) of fewer contour points than this is drawn as its exact
     /// polygon, joined to its neighbours' and smoothed with them, without trying the curve.
     /// Default [`DEFAULT_MIN_CURVE_POINTS`](crate::DEFAULT_MIN_CURVE_POINTS) (12:
-    /// on a shorter piece the curve's command saves nothing); 0 tries every curve.
+    /// on a shorter piece the curve's command saves nothing); 0 tries every curve (with
+    /// `max_curve_points` 0).
     pub min_curve_points: usize,
+    /// A curve piece (not a line) of more contour points than this is drawn as its exact
+    /// polygon, smoothed with its neighbours' and drawn in runs' cubics, without trying the
+    /// curve. Default [`DEFAULT_MAX_CURVE_POINTS`](crate::DEFAULT_MAX_CURVE_POINTS) (24:
+    /// longer curves seldom pass the render check, and the runs' cubics draw them in fewer
+    /// commands); 0 sets no limit.
+    pub max_curve_points: usize,
     /// Keep the square corners of one-pixel features (lone pixels, one-pixel spurs and
     /// notches), for pixel art. Default `false`: the corners inside a pixel staircase are
     /// cut by half a pixel (a lone pixel becomes a diamond), which changes no pixel.
@@ -76,6 +83,7 @@ impl Default for SvgOptions {
             tolerance: 0.05,
             min_clearance: crate::outline::DEFAULT_MIN_CLEARANCE,
             min_curve_points: crate::outline::DEFAULT_MIN_CURVE_POINTS,
+            max_curve_points: crate::outline::DEFAULT_MAX_CURVE_POINTS,
             square_corners: false,
         }
     }
@@ -274,6 +282,7 @@ pub(crate) fn outline_options(
             SvgOptions::default().min_clearance
         },
         min_curve_points: opts.min_curve_points,
+        max_curve_points: opts.max_curve_points,
         grid,
         // Curves are checked in both of tiny-skia's edge modes even where resvg will not
         // clip the document: Chromium draws large paths tile by tile, each tile clipping

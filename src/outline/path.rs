@@ -55,6 +55,9 @@ pub struct FallbackCounts {
     /// The piece has fewer contour points than the fewest drawn along a curve: drawn as its
     /// polygon.
     pub short: usize,
+    /// The piece has more contour points than the most drawn along a curve: drawn as its
+    /// polygon.
+    pub long: usize,
     /// The curve could not be drawn between its junctions (no point near a junction,
     /// `level_curve_path` failed, or the drawing strays from the pixels): drawn as its
     /// polygon.
@@ -76,6 +79,7 @@ impl FallbackCounts {
             + self.no_polynomial
             + self.thin
             + self.short
+            + self.long
             + self.curve
             + self.rendered
             + self.split
@@ -89,6 +93,7 @@ impl std::ops::AddAssign<&FallbackCounts> for FallbackCounts {
         self.no_polynomial += o.no_polynomial;
         self.thin += o.thin;
         self.short += o.short;
+        self.long += o.long;
         self.curve += o.curve;
         self.rendered += o.rendered;
         self.split += o.split;

@@ -83,6 +83,8 @@ pub(crate) enum Unused {
     Thin,
     /// It has fewer points than the fewest drawn along a curve.
     Short,
+    /// It has more points than the most drawn along a curve.
+    Long,
 }
 
 /// Makes stretches, numbering them.
@@ -134,7 +136,7 @@ impl<'a> Stretcher<'a> {
         basis: &dyn Basis,
         piece: &Piece,
         min_clearance: f64,
-        min_points: usize,
+        sizes: std::ops::RangeInclusive<usize>,
     ) -> (Stretch, Option<Unused>) {
         let id = self.id();
         let mut s = Stretch {
@@ -156,8 +158,12 @@ impl<'a> Stretcher<'a> {
         // two rules give the same outliers (none can be one of its pixels, which lie in the
         // layer, not strictly beside it).
         let straight = self.is_line_basis(basis);
-        if !straight && piece.last + 1 - piece.first < min_points {
+        let points = piece.last + 1 - piece.first;
+        if !straight && points < *sizes.start() {
             return (s, Some(Unused::Short));
+        }
+        if !straight && points > *sizes.end() {
+            return (s, Some(Unused::Long));
         }
         let border = straight
             .then(|| self.closed_border(basis, piece.first, piece.last, false))
