@@ -428,12 +428,13 @@ fn exact_path(
     // Consecutive pieces whose curves are unused share one polygon: its segments run across
     // the pieces' ends instead of stopping at each.
     let mut unused_run: Option<(usize, usize)> = None;
+    // The sizes (contour points) of the curve pieces whose curve is tried.
+    let sizes = opts.min_curve_points..=match opts.max_curve_points {
+        0 => usize::MAX,
+        most => most,
+    };
     for p in pieces {
-        let sizes = opts.min_curve_points..=match opts.max_curve_points {
-            0 => usize::MAX,
-            most => most,
-        };
-        let (s, unused) = st.piece(basis, p, opts.min_clearance, sizes);
+        let (s, unused) = st.piece(basis, p, opts.min_clearance, &sizes);
         match unused {
             None => {
                 if let Some((a, b)) = unused_run.take() {

@@ -130,13 +130,14 @@ impl<'a> Stretcher<'a> {
     }
 
     /// The stretch of a piece of the decomposition in `basis`, or why its curve is unused
-    /// (with the stretch to draw instead: cracks, to be refined when long enough).
+    /// (with the stretch to draw instead: cracks, to be refined when long enough). A curve
+    /// piece's curve is tried only when its number of points lies in `sizes`.
     pub fn piece(
         &mut self,
         basis: &dyn Basis,
         piece: &Piece,
         min_clearance: f64,
-        sizes: std::ops::RangeInclusive<usize>,
+        sizes: &std::ops::RangeInclusive<usize>,
     ) -> (Stretch, Option<Unused>) {
         let id = self.id();
         let mut s = Stretch {
