@@ -117,8 +117,8 @@ pub const DEFAULT_MIN_CURVE_POINTS: usize = 12;
 /// Default most contour points of a curve piece drawn along its curve: a longer one is drawn
 /// as its exact polygon, smoothed with its neighbours' and drawn in runs' cubics, without
 /// its border curve being found. Long curves seldom pass the render check (27 shared samples,
-/// conic: 91 kept of the 865 tried on pieces of more than 24 points, against 214 of 760 on
-/// 12 to 24), and the runs' cubics draw their polygons' gentle turns in fewer commands: with
+/// conic: 91 kept of the 865 tried on pieces of 24 points or more, against 214 of 760 on
+/// 12 to 23), and the runs' cubics draw their polygons' gentle turns in fewer commands: with
 /// 24, 8 282 commands and 179 887 bytes instead of 8 318 and 181 605, 10.7% fewer
 /// instructions (6.3% in the border curves alone), about as many sharp turns (turns over
 /// 30° between consecutive commands: 4 213 against 4 219). The short pieces' curves stay:
