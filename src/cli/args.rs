@@ -117,8 +117,9 @@ pub struct Args {
 
     /// Draw a curve piece of fewer than N contour points as its exact polygon, joined to its
     /// neighbours' and smoothed with them, without trying its curve: on a short piece the
-    /// curve's own command saves nothing (fewer commands and bytes, less time). 0 tries
-    /// every curve; the JSON keeps every piece's equation either way.
+    /// curve's own command saves nothing (fewer commands and bytes, less time). 0 tries the
+    /// curves of short pieces too (with --max-curve-points 0, every curve); the JSON keeps
+    /// every piece's equation either way.
     #[arg(long, value_name = "N", default_value_t = layertrace::DEFAULT_MIN_CURVE_POINTS)]
     pub min_curve_points: usize,
 
