@@ -179,7 +179,8 @@ fn fitted_cubic(
         let along = target[(k + 4).min(last)] - target[k.saturating_sub(4)];
         let along = along / along.hypot().max(1e-9);
         // The segment between the pixel centres beside the crack.
-        let across = if (p.y - p.y.round()).abs() < 1e-9 {
+        // (Crack middles are on the half-pixel grid: the test is exact.)
+        let across = if p.y == p.y as i64 as f64 {
             Vec2::new(0.0, 1.0)
         } else {
             Vec2::new(1.0, 0.0)

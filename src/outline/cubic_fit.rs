@@ -16,7 +16,8 @@ fn bernstein(t: f64) -> [f64; 4] {
 /// `chords` chords (between its points at `t = i / chords`).
 fn chord_weights(u: f64, chords: u32) -> [f64; 4] {
     let n = f64::from(chords);
-    let i = (u * n).floor().clamp(0.0, n - 1.0);
+    // (Truncated, not `floor`, a library call: the same below `n` once clamped.)
+    let i = ((u * n) as i64 as f64).clamp(0.0, n - 1.0);
     let f = u * n - i;
     let (b0, b1) = (bernstein(i / n), bernstein((i + 1.0) / n));
     std::array::from_fn(|k| (1.0 - f) * b0[k] + f * b1[k])
@@ -328,8 +329,9 @@ fn solve4(mut m: [[f64; 4]; 4], mut r: [f64; 4]) -> Option<[f64; 4]> {
 }
 
 /// The parameters of the points of `bez` nearest to the samples' cracks: from the nearest
-/// of 64 points along the curve, found walking along it as the samples go (`walk`), else
-/// from their last values; then two Newton steps.
+/// of 64 points along the curve, found walking along it as the samples go (`walk`: the
+/// first point nearer than both its neighbours), else from their last values; then two
+/// Newton steps.
 pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) {
     const STEPS: usize = 64;
     // (On the stack, and only made for a walk.)
@@ -341,18 +343,26 @@ pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) 
     for s in samples {
         let mut u = s.u;
         if let Some(along) = &along {
-            // The samples run along the curve: search a little back and further ahead.
-            let lo = at.saturating_sub(4);
-            let hi = (at + 16).min(STEPS);
-            // The first nearest, each distance computed once.
-            let mut nearest = (lo, (along[lo] - s.t).hypot2());
-            for (i, p) in along[lo + 1..=hi].iter().enumerate() {
-                let d = (*p - s.t).hypot2();
-                if d < nearest.1 {
-                    nearest = (lo + 1 + i, d);
+            // The samples run along the curve: from the last one's nearest point, ahead
+            // while the points come nearer (at most 16 steps), else back (at most 4).
+            let dist = |i: usize| (along[i] - s.t).hypot2();
+            let mut d = dist(at);
+            let (lo, hi) = (at.saturating_sub(4), (at + 16).min(STEPS));
+            let ahead = at < hi && dist(at + 1) < d;
+            while ahead && at < hi {
+                let next = dist(at + 1);
+                if next >= d {
+                    break;
                 }
+                (at, d) = (at + 1, next);
             }
-            at = nearest.0;
+            while !ahead && at > lo {
+                let next = dist(at - 1);
+                if next >= d {
+                    break;
+                }
+                (at, d) = (at - 1, next);
+            }
             u = at as f64 / STEPS as f64;
         }
         for _ in 0..2 {
