@@ -30,8 +30,9 @@
 //! [`super::smooth::MAX_TURN_DEGREES`] at each vertex, so no corner of the shape is rounded,
 //! and the path is first made to start at its sharpest corner (runs do not wrap round its
 //! start). From each command on, runs are fitted one command longer while they fit; the
-//! longest that fit are checked in the renderer first, then shorter ones. A fit is refitted until it is within every tolerance
-//! and drawn in the chords it was fitted with, at most [`FIT_ROUNDS`] times.
+//! longest that fit are checked in the renderer first, then shorter ones. A fit is refitted
+//! until it is within every tolerance and drawn in the chords it was fitted with, at most
+//! [`FIT_ROUNDS`] times.
 
 use super::builder::{on_segment, Builder};
 use super::chops::drawn_parts;
@@ -439,9 +440,9 @@ pub(crate) fn absorb_runs(
         while len <= limit {
             let mut cubic = fit(len);
             tried.push((len, cubic));
-            // Where two commands do not fit, or the run ends on a step (a command of a
-            // pixel or less), one more is tried too: a cubic across a step often fits where
-            // none up to it does, and without it the step stays a notch.
+            // Where two commands do not fit, or the run ends on a step (a command of at
+            // most [`MAX_STEP`]), one more is tried too: a cubic across a step often fits
+            // where none up to it does, and without it the step stays a notch.
             let k = j + len - 1;
             let step = (commands[k].end() - vertex(k)).hypot2() <= MAX_STEP * MAX_STEP;
             if cubic.is_none() && len < limit && (len == 2 || step) {

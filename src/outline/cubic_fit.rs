@@ -347,21 +347,22 @@ pub(super) fn reparametrize(bez: &CubicBez, samples: &mut [Sample], walk: bool) 
             // while the points come nearer (at most 16 steps), else back (at most 4).
             let dist = |i: usize| (along[i] - s.t).hypot2();
             let mut d = dist(at);
-            let (lo, hi) = (at.saturating_sub(4), (at + 16).min(STEPS));
-            let ahead = at < hi && dist(at + 1) < d;
-            while ahead && at < hi {
+            let (from, lo, hi) = (at, at.saturating_sub(4), (at + 16).min(STEPS));
+            while at < hi {
                 let next = dist(at + 1);
                 if next >= d {
                     break;
                 }
                 (at, d) = (at + 1, next);
             }
-            while !ahead && at > lo {
-                let next = dist(at - 1);
-                if next >= d {
-                    break;
+            if at == from {
+                while at > lo {
+                    let next = dist(at - 1);
+                    if next >= d {
+                        break;
+                    }
+                    (at, d) = (at - 1, next);
                 }
-                (at, d) = (at - 1, next);
             }
             u = at as f64 / STEPS as f64;
         }
