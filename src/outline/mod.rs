@@ -66,6 +66,7 @@ mod shapes;
 mod smooth;
 pub(crate) mod staircase;
 mod stretch;
+mod sure;
 pub(crate) mod tiles;
 mod vertices;
 

@@ -9,6 +9,7 @@ use super::render_check::{
     PathBounds, Reference, Window,
 };
 use super::scan;
+use super::sure::Known;
 use crate::curve::PathCommand;
 use crate::pixel::Pixel;
 use kurbo::{Point, Rect};
@@ -19,7 +20,8 @@ use kurbo::{Point, Rect};
 /// one mostly is too) and with its curves finely flattened ([`finely_flattened`]). A change
 /// to a path whose loop (the new commands, then the old ones backwards) paints nothing
 /// changes no pixel: tiny-skia and Skia sum each edge's crossings by itself, and a command
-/// drawn both ways cancels.
+/// drawn both ways cancels. Small loops of lines are settled without a fill where they can
+/// be ([`super::sure`]).
 pub(crate) fn loop_paints_nothing(
     anchor: Point,
     lp: &[PathCommand],
@@ -27,9 +29,21 @@ pub(crate) fn loop_paints_nothing(
     canvas: Option<Rect>,
     robust: bool,
 ) -> bool {
-    if surely_paints(anchor, lp, canvas) {
-        return false;
+    match super::sure::classify(anchor, lp, canvas) {
+        Known::Paints => false,
+        Known::PaintsNothing => true,
+        Known::Unknown => filled_paints_nothing(anchor, lp, clipping, canvas, robust),
     }
+}
+
+/// [`loop_paints_nothing`] by its fills alone.
+pub(super) fn filled_paints_nothing(
+    anchor: Point,
+    lp: &[PathCommand],
+    clipping: EdgeClipping,
+    canvas: Option<Rect>,
+    robust: bool,
+) -> bool {
     // The empty reference at the anchor: the window is the loop's.
     let nothing = Reference::new(anchor, &[]);
     let moved = |d: f64| {
@@ -53,91 +67,6 @@ pub(crate) fn loop_paints_nothing(
         && (!robust
             || finely_flattened(anchor, lp)
                 .is_none_or(|fine| draws_right(&nothing, anchor, &fine, EdgeClipping::Never, None)))
-}
-
-/// How far (px) from every edge of a loop of lines a pixel centre it winds round must lie
-/// for every fill of the checks to paint it ([`surely_paints`]): tiny-skia's and Skia's fixed
-/// point move a vertex by less than 1/64 px and a row crossing of an edge of at most
-/// [`SURE_SIZE`] rows by less than 1/256 px more, the moved checks move it by
-/// [`super::ROBUST_SHIFT`] (1/64 px), and a crossing farther from the centre than that
-/// rounds to the same side of it.
-const SURE_MARGIN: f64 = 0.125;
-
-/// Largest width and height (px) of a loop [`surely_paints`] looks into, and most pixel
-/// centres times edges it tests: beyond, the fills cost about as much (instructions over the
-/// 27 shared samples and on 400² noise, millions: 32 → 5 469 and 3 652, 64 → 5 468 and
-/// 3 636, 128 → 5 472 and 3 641, 256 → 5 478 and 3 646; without the test 5 467 and 3 715).
-const SURE_SIZE: f64 = 64.0;
-const SURE_WORK: usize = 64;
-
-/// Whether the closed loop of lines `M anchor lp Z` winds round a pixel centre (inside the
-/// `canvas`) farther than [`SURE_MARGIN`] from each of its edges: then every fill of
-/// [`loop_paints_nothing`] paints that pixel, and the loop is known to paint something
-/// without a fill. False when unsure: a curve, a loop too large, or no such centre.
-fn surely_paints(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) -> bool {
-    let mut lo = anchor;
-    let mut hi = anchor;
-    for c in lp {
-        let PathCommand::Line(p) = *c else {
-            return false;
-        };
-        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-    }
-    if !(hi.x - lo.x <= SURE_SIZE && hi.y - lo.y <= SURE_SIZE) {
-        return false;
-    }
-    // The centres strictly inside the bounds by the margin.
-    let first = |v: f64| (v + SURE_MARGIN - 0.5).floor() as i64 + 1;
-    let last = |v: f64| (v - SURE_MARGIN - 0.5).ceil() as i64 - 1;
-    let (x0, x1, y0, y1) = (first(lo.x), last(hi.x), first(lo.y), last(hi.y));
-    if x1 < x0 || y1 < y0 {
-        return false;
-    }
-    let centres = ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize;
-    if centres.saturating_mul(lp.len()) > SURE_WORK {
-        return false;
-    }
-    let margin2 = SURE_MARGIN * SURE_MARGIN;
-    for y in y0..=y1 {
-        for x in x0..=x1 {
-            let c = Point::new(x as f64 + 0.5, y as f64 + 0.5);
-            if canvas.is_some_and(|r| !r.contains(c)) {
-                continue;
-            }
-            // The winding round the centre first: most centres of a thin loop's bounds
-            // are outside it.
-            let edges = || {
-                let ends = lp
-                    .iter()
-                    .map(PathCommand::end)
-                    .chain(std::iter::once(anchor));
-                std::iter::once(anchor)
-                    .chain(lp.iter().map(PathCommand::end))
-                    .zip(ends)
-            };
-            let mut winding = 0i32;
-            for (a, b) in edges() {
-                let side = (b - a).cross(c - a);
-                if a.y <= c.y && c.y < b.y && side > 0.0 {
-                    winding += 1;
-                } else if b.y <= c.y && c.y < a.y && side < 0.0 {
-                    winding -= 1;
-                }
-            }
-            if winding == 0 {
-                continue;
-            }
-            let clear = edges().all(|(a, b)| {
-                kurbo::ParamCurveNearest::nearest(&kurbo::Line::new(a, b), c, 0.0).distance_sq
-                    >= margin2
-            });
-            if clear {
-                return true;
-            }
-        }
-    }
-    false
 }
 
 /// Largest distance (pixels) of the polyline [`finely_flattened`] draws to the true curves.
@@ -380,48 +309,6 @@ mod tests {
             );
             prop_assert_eq!(one_scan, each);
         }
-    }
-
-    proptest! {
-        /// A loop of lines said to paint surely does paint: moved either way and as it is
-        /// (random small polygons on the 1/16-px grid).
-        #[test]
-        fn a_loop_that_surely_paints_paints(
-            path in prop::collection::vec((0i32..96, 0i32..96), 3..9),
-        ) {
-            let p = |&(x, y): &(i32, i32)| Point::new(f64::from(x) / 16.0 + 2.0, f64::from(y) / 16.0 + 2.0);
-            let anchor = p(&path[0]);
-            let lp: Vec<PathCommand> = path[1..].iter().map(|q| PathCommand::Line(p(q))).collect();
-            if !surely_paints(anchor, &lp, None) {
-                return Ok(());
-            }
-            let nothing = Reference::new(anchor, &[]);
-            for d in [0.0, super::super::ROBUST_SHIFT, -super::super::ROBUST_SHIFT] {
-                let v = kurbo::Vec2::new(d, 0.0);
-                let moved: Vec<PathCommand> = lp.iter().map(|c| c.translated(v)).collect();
-                prop_assert!(!draws_right(&nothing, anchor + v, &moved, EdgeClipping::Never, None));
-            }
-        }
-    }
-
-    #[test]
-    fn sure_paints_need_a_centre_clear_of_the_edges() {
-        let l = |x: f64, y: f64| PathCommand::Line(Point::new(x, y));
-        // A triangle round the centre (3.5, 3.5), 0.35 px from its nearest edge.
-        let corner = [l(5.0, 3.0), l(3.0, 5.0)];
-        assert!(surely_paints(Point::new(3.0, 3.0), &corner, None));
-        // Not when the canvas leaves the centre out.
-        let canvas = Rect::new(0.0, 0.0, 3.0, 10.0);
-        assert!(!surely_paints(Point::new(3.0, 3.0), &corner, Some(canvas)));
-        // A sliver passing 0.05 px from the centre: unsure.
-        let sliver = [l(4.0, 3.55), l(3.0, 3.45)];
-        assert!(!surely_paints(Point::new(3.0, 3.55), &sliver, None));
-        // A curve: unsure.
-        let curve = [PathCommand::Quad(
-            Point::new(5.0, 3.0),
-            Point::new(3.0, 5.0),
-        )];
-        assert!(!surely_paints(Point::new(3.0, 3.0), &curve, None));
     }
 
     #[test]
