@@ -53,17 +53,37 @@ struct Edge {
     /// The edge's lower and upper y.
     y_lo: f64,
     y_hi: f64,
-    /// Its least and greatest x.
-    x_lo: f64,
-    x_hi: f64,
+    /// Its bounds widened by [`MARGIN`].
+    near_x_lo: f64,
+    near_x_hi: f64,
+    near_y_lo: f64,
+    near_y_hi: f64,
     /// Its start, and x's change per unit of y (0 for a horizontal edge).
     a: Point,
     run: f64,
-    /// Half the width in x, per px of distance, of the band round its line on a row
-    /// (length / |dy|; infinite for a horizontal edge).
-    spread: f64,
+    /// Half the width in x of the band within [`MARGIN`] of its line on a row: the margin
+    /// times length / |dy| (unused for a horizontal edge).
+    half: f64,
     /// +1 downwards, −1 upwards, 0 horizontal.
     dir: i32,
+}
+
+/// The lesser of two numbers, neither NaN (without `f64::min`'s care for NaN).
+fn less(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The greater of two numbers, neither NaN.
+fn greater(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
 }
 
 impl Edge {
@@ -71,16 +91,18 @@ impl Edge {
         let (dx, dy) = (b.x - a.x, b.y - a.y);
         let horizontal = dy == 0.0;
         Edge {
-            y_lo: a.y.min(b.y),
-            y_hi: a.y.max(b.y),
-            x_lo: a.x.min(b.x),
-            x_hi: a.x.max(b.x),
+            y_lo: less(a.y, b.y),
+            y_hi: greater(a.y, b.y),
+            near_x_lo: less(a.x, b.x) - MARGIN,
+            near_x_hi: greater(a.x, b.x) + MARGIN,
+            near_y_lo: less(a.y, b.y) - MARGIN,
+            near_y_hi: greater(a.y, b.y) + MARGIN,
             a,
             run: if horizontal { 0.0 } else { dx / dy },
-            spread: if horizontal {
-                f64::INFINITY
+            half: if horizontal {
+                0.0
             } else {
-                (dx * dx + dy * dy).sqrt() / dy.abs()
+                MARGIN * (dx * dx + dy * dy).sqrt() / dy.abs()
             },
             dir: if horizontal {
                 0
@@ -92,19 +114,18 @@ impl Edge {
         }
     }
 
-    /// The interval of x on the row `y` within `margin` (px) of the edge's band: the band of
-    /// its line (|cross| < margin · length) within its bounds widened by the margin, which
-    /// holds every point that near the edge. `None` if the row passes farther.
-    fn near(&self, y: f64, margin: f64) -> Option<(f64, f64)> {
-        if y <= self.y_lo - margin || y >= self.y_hi + margin {
+    /// The interval of x on the row `y` within [`MARGIN`] of the edge's band: the band of its
+    /// line (|cross| < margin · length) within its bounds widened by the margin, which holds
+    /// every point that near the edge. `None` if the row passes farther.
+    fn near(&self, y: f64) -> Option<(f64, f64)> {
+        if y <= self.near_y_lo || y >= self.near_y_hi {
             return None;
         }
-        let (mut lo, mut hi) = (self.x_lo - margin, self.x_hi + margin);
+        let (mut lo, mut hi) = (self.near_x_lo, self.near_x_hi);
         if self.dir != 0 {
             let x = self.x_at(y);
-            let half = margin * self.spread;
-            lo = lo.max(x - half);
-            hi = hi.min(x + half);
+            lo = greater(lo, x - self.half);
+            hi = less(hi, x + self.half);
         }
         (lo <= hi).then_some((lo, hi))
     }
@@ -168,16 +189,20 @@ pub(crate) fn classify(
             return Known::Unknown;
         };
         edges[k] = Edge::new(from, p);
-        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        lo = Point::new(less(lo.x, p.x), less(lo.y, p.y));
+        hi = Point::new(greater(hi.x, p.x), greater(hi.y, p.y));
         from = p;
     }
     let edges = &edges[..=lp.len()];
     if !(hi.x - lo.x <= SURE_SIZE && hi.y - lo.y <= SURE_SIZE) {
         return Known::Unknown;
     }
-    // Rows of centres y + 0.5 within the margin of the bounds.
+    // Rows of centres y + 0.5 within the margin of the bounds; none, or no such column of
+    // centres x + 0.5, and the loop is clear of every centre.
     let (y0, y1) = (ceil(lo.y - MARGIN - 0.5), floor(hi.y + MARGIN - 0.5));
+    if y1 < y0 || floor(hi.x + MARGIN - 0.5) < ceil(lo.x - MARGIN - 0.5) {
+        return Known::PaintsNothing;
+    }
     let mut work = (y1 - y0 + 1).max(0) as usize * edges.len();
     if work > MOST_WORK {
         return Known::Unknown;
@@ -191,11 +216,11 @@ pub(crate) fn classify(
         let (mut left, mut right) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut n_near, mut n_cross) = (0, 0);
         for (k, e) in edges.iter().enumerate() {
-            if let Some((l, r)) = e.near(y, MARGIN) {
+            if let Some((l, r)) = e.near(y) {
                 near[n_near] = (l, r, k);
                 n_near += 1;
-                left = left.min(l);
-                right = right.max(r);
+                left = less(left, l);
+                right = greater(right, r);
             }
             if e.crosses(y) {
                 crossings[n_cross] = (e.x_at(y), e.dir, k);
