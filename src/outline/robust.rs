@@ -29,7 +29,7 @@ pub(crate) fn loop_paints_nothing(
     canvas: Option<Rect>,
     robust: bool,
 ) -> bool {
-    match super::sure::classify(anchor, lp, canvas, robust) {
+    match super::sure::classify(anchor, lp, canvas) {
         Known::Paints => false,
         Known::PaintsNothing => true,
         Known::Unknown => filled_paints_nothing(anchor, lp, clipping, canvas, robust),

@@ -33,10 +33,6 @@ pub(crate) enum Known {
 /// nothing were settled too, and 1/16 px saves another 2% of the instructions there.)
 const MARGIN: f64 = 1.0 / 16.0;
 
-/// How far (px) a pixel centre may lie from an edge's line to count as on it
-/// ([`classify`] when `robust`): rounding in the line's crossing with the row.
-const ON_EDGE: f64 = 1e-9;
-
 /// Largest width and height (px) of a loop [`classify`] looks into.
 pub(crate) const SURE_SIZE: f64 = 64.0;
 
@@ -157,23 +153,17 @@ fn ceil(v: f64) -> i64 {
 /// without them (see the module documentation): [`Known::Paints`] when a centre inside the
 /// `canvas` lies inside the loop and farther than [`MARGIN`] from every edge,
 /// [`Known::PaintsNothing`] when every centre lies outside it and farther than [`MARGIN`]
-/// from every edge. When the fills are `robust` (moved by [`super::ROBUST_SHIFT`] each way
-/// too), also [`Known::Paints`] when a centre inside the `canvas` lies on one edge (not
-/// horizontal, not at its ends), farther than [`MARGIN`] from every other, with the loop on
-/// either side of it: one of the moved fills has it 1/64 px inside, far beyond its fixed
-/// point's rounding (as where two lines cut a pixel's corner through its centre).
-/// [`Known::Unknown`] for a curve, a loop larger than [`SURE_SIZE`] or of more than
-/// [`MOST_EDGES`] edges, or more work than [`MOST_WORK`].
+/// from every edge. [`Known::Unknown`] for a curve, a loop larger than [`SURE_SIZE`] or of
+/// more than [`MOST_EDGES`] edges, or more work than [`MOST_WORK`].
+///
+/// A centre on an edge is left to the fills even where a fill moved by 1/64 px has it
+/// inside: tiny-skia's fixed point may truncate a crossing by as much (its first row's
+/// offset, slope times distance, is truncated to 1/64 px; a proptest found such a triangle).
 ///
 /// Row of centres by row: each edge's nearness meets the row in an interval, and the loop's
 /// inside on the row lies between its crossings, which lie in those intervals; so only the
 /// centres within their hull need a look.
-pub(crate) fn classify(
-    anchor: Point,
-    lp: &[PathCommand],
-    canvas: Option<Rect>,
-    robust: bool,
-) -> Known {
+pub(crate) fn classify(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) -> Known {
     if lp.len() + 1 > MOST_EDGES {
         return Known::Unknown;
     }
@@ -208,22 +198,22 @@ pub(crate) fn classify(
         return Known::Unknown;
     }
     let mut nothing = true;
-    // Per row: each near edge's interval and index; each crossing, its direction and edge.
-    let mut near = [(0.0f64, 0.0f64, 0usize); MOST_EDGES];
-    let mut crossings = [(0.0f64, 0i32, 0usize); MOST_EDGES];
+    // Per row: each near edge's interval; each crossing and its direction.
+    let mut near = [(0.0f64, 0.0f64); MOST_EDGES];
+    let mut crossings = [(0.0f64, 0i32); MOST_EDGES];
     for row in y0..=y1 {
         let y = row as f64 + 0.5;
         let (mut left, mut right) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut n_near, mut n_cross) = (0, 0);
-        for (k, e) in edges.iter().enumerate() {
+        for e in edges {
             if let Some((l, r)) = e.near(y) {
-                near[n_near] = (l, r, k);
+                near[n_near] = (l, r);
                 n_near += 1;
                 left = less(left, l);
                 right = greater(right, r);
             }
             if e.crosses(y) {
-                crossings[n_cross] = (e.x_at(y), e.dir, k);
+                crossings[n_cross] = (e.x_at(y), e.dir);
                 n_cross += 1;
             }
         }
@@ -237,38 +227,21 @@ pub(crate) fn classify(
         }
         for col in first..=last {
             let x = col as f64 + 0.5;
-            let in_canvas = || canvas.is_none_or(|r| r.contains(Point::new(x, y)));
-            // The near edges: how many, and the last.
-            let (mut n_in, mut on) = (0, 0);
-            for &(l, r, k) in &near[..n_near] {
-                if l <= x && x <= r {
-                    n_in += 1;
-                    on = k;
-                }
-            }
-            let winding_without = |skip: usize| -> i32 {
-                crossings[..n_cross]
-                    .iter()
-                    .filter(|&&(cx, _, k)| k != skip && cx < x)
-                    .map(|&(_, d, _)| d)
-                    .sum()
-            };
-            if n_in == 0 {
-                if winding_without(usize::MAX) != 0 {
-                    if in_canvas() {
-                        return Known::Paints;
-                    }
-                    nothing = false;
-                }
+            // Near an edge, only the fills can tell; clear of them, wound round or not.
+            if near[..n_near].iter().any(|&(l, r)| l <= x && x <= r) {
+                nothing = false;
                 continue;
             }
-            nothing = false;
-            let e = &edges[on];
-            if robust && n_in == 1 && e.crosses(y) && (e.x_at(y) - x).abs() <= ON_EDGE {
-                let left_of = winding_without(on);
-                if (left_of != 0 || left_of + e.dir != 0) && in_canvas() {
+            let winding: i32 = crossings[..n_cross]
+                .iter()
+                .filter(|&&(cx, _)| cx < x)
+                .map(|&(_, d)| d)
+                .sum();
+            if winding != 0 {
+                if canvas.is_none_or(|r| r.contains(Point::new(x, y))) {
                     return Known::Paints;
                 }
+                nothing = false;
             }
         }
     }
@@ -303,7 +276,7 @@ mod tests {
             let anchor = p(&path[0]);
             let lp: Vec<PathCommand> = path[1..].iter().map(|q| PathCommand::Line(p(q))).collect();
             let filled = filled_paints_nothing(anchor, &lp, EdgeClipping::Never, Some(PAGE), robust);
-            match classify(anchor, &lp, Some(PAGE), robust) {
+            match classify(anchor, &lp, Some(PAGE)) {
                 Known::Paints => prop_assert!(!filled),
                 Known::PaintsNothing => prop_assert!(filled),
                 Known::Unknown => {}
@@ -319,31 +292,23 @@ mod tests {
     fn a_centre_clear_of_the_edges_is_painted() {
         // A triangle round the centre (3.5, 3.5), 0.35 px from its nearest edge.
         let corner = [l(5.0, 3.0), l(3.0, 5.0)];
-        assert_eq!(
-            classify(Point::new(3.0, 3.0), &corner, None, true),
-            Known::Paints
-        );
+        assert_eq!(classify(Point::new(3.0, 3.0), &corner, None), Known::Paints);
         // Not when the canvas leaves the centre out.
         let canvas = Rect::new(0.0, 0.0, 3.0, 10.0);
         assert_eq!(
-            classify(Point::new(3.0, 3.0), &corner, Some(canvas), true),
+            classify(Point::new(3.0, 3.0), &corner, Some(canvas)),
             Known::Unknown
         );
         // A sliver passing 0.05 px from the centre: only the fills can tell.
         let sliver = [l(4.0, 3.55), l(3.0, 3.45)];
         assert_eq!(
-            classify(Point::new(3.0, 3.55), &sliver, None, true),
+            classify(Point::new(3.0, 3.55), &sliver, None),
             Known::Unknown
         );
-        // A pixel's corner cut through its centre (66.5, 9.5): painted by one of the moved
-        // fills, which only robust checks make.
+        // A pixel's corner cut through its centre (66.5, 9.5): only the fills can tell.
         let corner = [l(67.0, 9.0), l(67.0, 10.0)];
         assert_eq!(
-            classify(Point::new(66.0, 10.0), &corner, None, true),
-            Known::Paints
-        );
-        assert_eq!(
-            classify(Point::new(66.0, 10.0), &corner, None, false),
+            classify(Point::new(66.0, 10.0), &corner, None),
             Known::Unknown
         );
         // A curve: unknown.
@@ -351,10 +316,7 @@ mod tests {
             Point::new(5.0, 3.0),
             Point::new(3.0, 5.0),
         )];
-        assert_eq!(
-            classify(Point::new(3.0, 3.0), &curve, None, true),
-            Known::Unknown
-        );
+        assert_eq!(classify(Point::new(3.0, 3.0), &curve, None), Known::Unknown);
     }
 
     #[test]
@@ -362,25 +324,22 @@ mod tests {
         // A thin triangle between the rows of centres 3.5 and 4.5, 0.2 px from them.
         let thin = [l(9.0, 3.7), l(5.0, 4.3)];
         assert_eq!(
-            classify(Point::new(2.0, 3.7), &thin, None, true),
+            classify(Point::new(2.0, 3.7), &thin, None),
             Known::PaintsNothing
         );
         // Its corner 0.03 px above the centre (5.5, 4.5): only the fills can tell.
         let near = [l(9.0, 4.2), l(5.5, 4.47)];
-        assert_eq!(
-            classify(Point::new(2.0, 4.2), &near, None, true),
-            Known::Unknown
-        );
+        assert_eq!(classify(Point::new(2.0, 4.2), &near, None), Known::Unknown);
         // Two edges meeting on a pixel centre: unknown.
         let through = [l(4.5, 4.5), l(6.0, 4.4)];
         assert_eq!(
-            classify(Point::new(3.0, 4.4), &through, None, true),
+            classify(Point::new(3.0, 4.4), &through, None),
             Known::Unknown
         );
         // A loop larger than the work allowed: unknown.
         let large = [l(40.0, 0.25), l(40.0, 40.25), l(0.0, 40.25)];
         assert_eq!(
-            classify(Point::new(0.0, 0.25), &large, None, true),
+            classify(Point::new(0.0, 0.25), &large, None),
             Known::Unknown
         );
     }
