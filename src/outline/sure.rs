@@ -34,7 +34,7 @@ pub(crate) enum Known {
 const MARGIN: f64 = 1.0 / 16.0;
 
 /// Largest width and height (px) of a loop [`classify`] looks into.
-pub(crate) const SURE_SIZE: f64 = 64.0;
+const SURE_SIZE: f64 = 64.0;
 
 /// Most edges of a loop [`classify`] looks into.
 const MOST_EDGES: usize = 16;
