@@ -4,12 +4,13 @@
 //! The render checks ([`super::robust::loop_paints_nothing`]) fill a loop with tiny-skia,
 //! moved by [`super::ROBUST_SHIFT`] each way, and in Chromium's tiles. Each of those fills
 //! places an edge within a small distance of where it lies: tiny-skia's and Skia's fixed
-//! point move a vertex by less than 1/64 px and a row crossing of an edge of at most
-//! [`SURE_SIZE`] rows by less than 1/256 px more, and the moved fills move it by 1/64 px;
-//! less than 0.036 px in all. So a pixel centre inside the loop and farther than that from
-//! every edge is painted by every fill, and a loop whose every centre lies outside it and
-//! farther than that from every edge is painted by none. [`classify`] looks for either, row
-//! of centres by row.
+//! point move an edge's crossing of a row of centres by at most 1/64 px (the offset to its
+//! first row is truncated to 1/64 px) and by less than 1/256 px more over at most
+//! [`SURE_SIZE`] rows, the moved fills move it by 1/64 px, and a tile's cut rounds the cut's
+//! end to 1/128 px; less than 0.036 px in all. So a pixel centre inside the loop and farther
+//! than that from every edge is painted by every fill, and a loop whose every centre lies
+//! outside it and farther than that from every edge is painted by none. [`classify`] looks
+//! for either, row of centres by row.
 
 use crate::curve::PathCommand;
 use kurbo::{Point, Rect};
