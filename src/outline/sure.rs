@@ -87,13 +87,14 @@ impl Edge {
     fn new(a: Point, b: Point) -> Edge {
         let (dx, dy) = (b.x - a.x, b.y - a.y);
         let horizontal = dy == 0.0;
+        let (y_lo, y_hi) = (less(a.y, b.y), greater(a.y, b.y));
         Edge {
-            y_lo: less(a.y, b.y),
-            y_hi: greater(a.y, b.y),
+            y_lo,
+            y_hi,
             near_x_lo: less(a.x, b.x) - MARGIN,
             near_x_hi: greater(a.x, b.x) + MARGIN,
-            near_y_lo: less(a.y, b.y) - MARGIN,
-            near_y_hi: greater(a.y, b.y) + MARGIN,
+            near_y_lo: y_lo - MARGIN,
+            near_y_hi: y_hi + MARGIN,
             a,
             run: if horizontal { 0.0 } else { dx / dy },
             half: if horizontal {
@@ -194,7 +195,7 @@ pub(crate) fn classify(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) 
     if y1 < y0 || floor(hi.x + MARGIN - 0.5) < ceil(lo.x - MARGIN - 0.5) {
         return Known::PaintsNothing;
     }
-    let mut work = (y1 - y0 + 1).max(0) as usize * edges.len();
+    let mut work = (y1 - y0 + 1) as usize * edges.len();
     if work > MOST_WORK {
         return Known::Unknown;
     }
