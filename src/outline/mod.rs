@@ -339,8 +339,25 @@ pub fn contour_path(
 /// The pixels the path `M start commands Z` draws wrong against `reference` (the contour's
 /// crack polygon or its coarse stand-in; `cracks` the crack polygon itself), by the first
 /// check that finds any: moved by [`ROBUST_SHIFT`], plain, both ways of drawing curves,
-/// in Chromium's tiles, finely flattened. Empty when the path is exact.
+/// in Chromium's tiles, finely flattened. Empty when the path is exact. A path of lines
+/// whose every fill is known exact without one ([`sure::path_draws_right`]) is not filled.
 fn misplaced_anywhere(
+    reference: &Reference,
+    cracks: &Reference,
+    start: kurbo::Point,
+    commands: &[crate::curve::PathCommand],
+    opts: &OutlineOptions,
+) -> Vec<crate::pixel::Pixel> {
+    // A path of lines clear of every pixel centre and winding round each as the cracks do
+    // is exact without a fill (on 400² noise, 2 477 of the 3 889 checks of paths of lines).
+    if sure::path_draws_right(cracks, start, commands, opts.canvas) {
+        return Vec::new();
+    }
+    misplaced_when_filled(reference, cracks, start, commands, opts)
+}
+
+/// [`misplaced_anywhere`] by the fills alone.
+fn misplaced_when_filled(
     reference: &Reference,
     cracks: &Reference,
     start: kurbo::Point,

@@ -1,5 +1,6 @@
-//! Small loops of lines whose paint is known without a fill: a pixel centre well inside one,
-//! or every centre well clear of it.
+//! Paths of lines whose paint is known without a fill: a small loop with a pixel centre well
+//! inside it, or every centre well clear of it; a contour's path clear of every centre and
+//! winding round each as the contour's cracks do.
 //!
 //! The render checks ([`super::robust::loop_paints_nothing`]) fill a loop with tiny-skia,
 //! moved by [`super::ROBUST_SHIFT`] each way, and in Chromium's tiles. Each of those fills
@@ -10,8 +11,11 @@
 //! end to 1/128 px; less than 0.036 px in all. So a pixel centre inside the loop and farther
 //! than that from every edge is painted by every fill, and a loop whose every centre lies
 //! outside it and farther than that from every edge is painted by none. [`classify`] looks
-//! for either, row of centres by row.
+//! for either, row of centres by row. Likewise a path every centre of which lies farther
+//! than that from every edge paints, in every fill, the centres it winds round: where those
+//! are the pixels of its contour, the path is exact ([`path_draws_right`]).
 
+use super::render_check::Reference;
 use crate::curve::PathCommand;
 use kurbo::{Point, Rect};
 
@@ -254,6 +258,117 @@ pub(crate) fn classify(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) 
     }
 }
 
+/// Most pixels in the bounds of a path and its reference that [`path_draws_right`] looks
+/// at: beyond, it leaves the path to the fills.
+const MOST_CELLS: usize = 4096;
+
+/// Whether every fill of the closed path of lines `M start commands Z` paints exactly the
+/// pixels of `reference`, known without a fill: every pixel centre lies farther than
+/// [`MARGIN`] from every edge of the path, and the path winds round each as the reference
+/// does (see the module documentation; so does the path moved by [`super::ROBUST_SHIFT`],
+/// and cut at Chromium's tiles). False where only the fills can tell, and for a curve, an
+/// edge across more than [`SURE_SIZE`] rows, bounds of more than [`MOST_CELLS`] pixels, a
+/// path within a pixel of the `canvas`'s border or a reference that is not a crack polygon
+/// (whole-pixel corners, axis-aligned edges).
+///
+/// The fills compare windings (the path and the reference reversed, filled together, paint
+/// where they differ: [`super::render_check::misplaced_pixels`]). The reference's edges cross
+/// every row of centres at a whole pixel, half a pixel from every centre, so its winding is
+/// known exactly; each crossing of a row changes the windings of the centres to its right,
+/// so a prefix sum along the row gives every centre's difference of the two.
+pub(crate) fn path_draws_right(
+    reference: &Reference,
+    start: Point,
+    commands: &[PathCommand],
+    canvas: Option<Rect>,
+) -> bool {
+    if commands.is_empty() {
+        return false;
+    }
+    let (mut lo, mut hi) = (start, start);
+    for c in commands {
+        let PathCommand::Line(p) = *c else {
+            return false;
+        };
+        lo = Point::new(less(lo.x, p.x), less(lo.y, p.y));
+        hi = Point::new(greater(hi.x, p.x), greater(hi.y, p.y));
+    }
+    if !(lo.x.is_finite() && lo.y.is_finite() && hi.x.is_finite() && hi.y.is_finite()) {
+        return false;
+    }
+    if let Some(c) = canvas {
+        if !(c.x0 <= lo.x - 1.0 && hi.x + 1.0 <= c.x1 && c.y0 <= lo.y - 1.0 && hi.y + 1.0 <= c.y1) {
+            return false;
+        }
+    }
+    // Centres (x + 0.5, y + 0.5) of the columns x0.. and rows y0.. of the bounds, one more
+    // column for the crossings right of every centre.
+    let (x0, y0) = (
+        floor(less(lo.x, reference.lo.x)),
+        floor(less(lo.y, reference.lo.y)),
+    );
+    let (x1, y1) = (
+        ceil(greater(hi.x, reference.hi.x)),
+        ceil(greater(hi.y, reference.hi.y)),
+    );
+    let (width, height) = ((x1 - x0 + 2) as usize, (y1 - y0 + 1) as usize);
+    if width.saturating_mul(height) > MOST_CELLS {
+        return false;
+    }
+    // At each centre, the change of the windings (path minus reference) from its left.
+    let mut change = vec![0i32; width * height];
+    let mut cross = |row: i64, col: i64, d: i32| {
+        change[(row - y0) as usize * width + (col - x0) as usize] += d;
+    };
+    let mut from = start;
+    for c in commands
+        .iter()
+        .chain(std::iter::once(&PathCommand::Line(start)))
+    {
+        let p = c.end();
+        let e = Edge::new(from, p);
+        from = p;
+        if !(e.y_hi - e.y_lo <= SURE_SIZE) {
+            return false;
+        }
+        // The rows of centres within the margin of the edge: none may pass near a centre.
+        for row in ceil(e.near_y_lo - 0.5)..=floor(e.near_y_hi - 0.5) {
+            let y = row as f64 + 0.5;
+            if let Some((l, r)) = e.near(y) {
+                if ceil(l - 0.5) <= floor(r - 0.5) {
+                    return false;
+                }
+            }
+            if e.crosses(y) {
+                cross(row, ceil(e.x_at(y) - 0.5), e.dir);
+            }
+        }
+    }
+    let mut from = reference.start;
+    let closing = (!reference.vertices.is_empty()).then_some(&reference.start);
+    for &b in reference.vertices.iter().chain(closing) {
+        let a = from;
+        from = b;
+        if a.x.fract() != 0.0 || a.y.fract() != 0.0 || (a.x != b.x && a.y != b.y) {
+            return false;
+        }
+        if a.y != b.y {
+            // Reversed: an edge downwards winds −1.
+            let dir = if b.y > a.y { -1 } else { 1 };
+            for row in less(a.y, b.y) as i64..greater(a.y, b.y) as i64 {
+                cross(row, a.x as i64, dir);
+            }
+        }
+    }
+    change.chunks_exact(width).all(|row| {
+        let mut winding = 0;
+        row.iter().all(|&d| {
+            winding += d;
+            winding == 0
+        })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -284,6 +399,132 @@ mod tests {
                 Known::Unknown => {}
             }
         }
+    }
+
+    /// The crack polygon (corners in order, from the first row's left end, rightwards)
+    /// of rows `at + i` of pixels covering `at + l_i .. at + r_i`, consecutive rows made to
+    /// overlap (a 4-connected shape without holes).
+    fn cracks_of(rows: &[(i32, i32)], at: f64) -> Vec<Point> {
+        let mut spans: Vec<(i32, i32)> = Vec::new();
+        for &(l, len) in rows {
+            let (mut l, mut r) = (l, l + len);
+            if let Some(&(pl, pr)) = spans.last() {
+                l = l.min(pr - 1);
+                r = r.max(pl + 1);
+            }
+            spans.push((l, r));
+        }
+        let p = |x: i32, y: usize| Point::new(f64::from(x) + at, y as f64 + at);
+        let mut corners = vec![p(spans[0].0, 0)];
+        for (i, &(_, r)) in spans.iter().enumerate() {
+            corners.push(p(r, i));
+            corners.push(p(r, i + 1));
+        }
+        for (i, &(l, _)) in spans.iter().enumerate().rev() {
+            corners.push(p(l, i + 1));
+            corners.push(p(l, i));
+        }
+        corners.pop();
+        corners.dedup();
+        corners
+    }
+
+    proptest! {
+        /// A path of lines known exact is exact in every fill of the render check: paths
+        /// near random shapes' crack polygons (corners dropped, moved by multiples of
+        /// 1/64 px; all kept where fewer than three would be), some across a tile's cut,
+        /// some on a page, some not.
+        #[test]
+        fn paths_known_right_fill_right(
+            rows in prop::collection::vec((0i32..6, 1i32..6), 1..6),
+            moves in prop::collection::vec((any::<bool>(), -24i32..=24, -24i32..=24), 24),
+            at in prop::sample::select(vec![2.0, 250.0, 253.0]),
+            page in any::<bool>(),
+        ) {
+            let corners = cracks_of(&rows, at);
+            let reference = Reference::new(
+                corners[0],
+                &corners[1..].iter().map(|&q| PathCommand::Line(q)).collect::<Vec<_>>(),
+            );
+            let moved = |(&q, &(_, dx, dy)): (&Point, &(bool, i32, i32))| {
+                q + kurbo::Vec2::new(f64::from(dx), f64::from(dy)) / 64.0
+            };
+            let mut path: Vec<Point> = corners
+                .iter()
+                .zip(moves.iter().cycle())
+                .filter(|(_, m)| m.0)
+                .map(moved)
+                .collect();
+            if path.len() < 3 {
+                path = corners.iter().zip(moves.iter().cycle()).map(moved).collect();
+            }
+            let lp: Vec<PathCommand> = path[1..].iter().map(|&q| PathCommand::Line(q)).collect();
+            let opts = crate::outline::OutlineOptions {
+                canvas: page.then_some(PAGE),
+                ..Default::default()
+            };
+            if path_draws_right(&reference, path[0], &lp, opts.canvas) {
+                let wrong = super::super::misplaced_when_filled(&reference, &reference, path[0], &lp, &opts);
+                prop_assert!(wrong.is_empty(), "{:?}", wrong);
+            }
+        }
+    }
+
+    #[test]
+    fn a_path_near_the_cracks_is_known_right() {
+        // Two rows: 1..4 and 2..5, at 10.
+        let corners = cracks_of(&[(1, 3), (2, 3)], 10.0);
+        let lines =
+            |c: &[Point]| -> Vec<PathCommand> { c.iter().map(|&q| PathCommand::Line(q)).collect() };
+        let reference = Reference::new(corners[0], &lines(&corners[1..]));
+        // The cracks themselves.
+        assert!(path_draws_right(
+            &reference,
+            corners[0],
+            &lines(&corners[1..]),
+            None
+        ));
+        // The step's corner (14, 11) moved in, 0.3 px from the centres beside it.
+        let cut: Vec<Point> = corners
+            .iter()
+            .map(|&q| {
+                if q == Point::new(14.0, 11.0) {
+                    Point::new(14.25, 10.75)
+                } else {
+                    q
+                }
+            })
+            .collect();
+        assert!(path_draws_right(
+            &reference,
+            cut[0],
+            &lines(&cut[1..]),
+            None
+        ));
+        // Not within a pixel of the page's border, nor on a page too small.
+        let page = Rect::new(0.0, 0.0, 15.5, 30.0);
+        assert!(!path_draws_right(
+            &reference,
+            cut[0],
+            &lines(&cut[1..]),
+            Some(page)
+        ));
+        // A corner cut through a pixel's centre: the pixel (11, 10) is left out.
+        let through: Vec<Point> = corners
+            .iter()
+            .copied()
+            .filter(|&q| q != Point::new(11.0, 10.0))
+            .collect();
+        assert!(!path_draws_right(
+            &reference,
+            through[0],
+            &lines(&through[1..]),
+            None
+        ));
+        // A curve: only the fills can tell.
+        let mut curved = lines(&corners[1..]);
+        curved[0] = PathCommand::Quad(Point::new(12.0, 9.0), corners[1]);
+        assert!(!path_draws_right(&reference, corners[0], &curved, None));
     }
 
     fn l(x: f64, y: f64) -> PathCommand {
