@@ -328,7 +328,7 @@ pub(crate) fn path_draws_right(
         let p = c.end();
         let e = Edge::new(from, p);
         from = p;
-        if !(e.y_hi - e.y_lo <= SURE_SIZE) {
+        if e.y_hi - e.y_lo > SURE_SIZE {
             return false;
         }
         // The rows of centres within the margin of the edge: none may pass near a centre.
