@@ -501,7 +501,7 @@ mod tests {
             &lines(&cut[1..]),
             None
         ));
-        // Not within a pixel of the page's border, nor on a page too small.
+        // Within a pixel of the page's border (at 15.5): left to the fills.
         let page = Rect::new(0.0, 0.0, 15.5, 30.0);
         assert!(!path_draws_right(
             &reference,
@@ -509,7 +509,8 @@ mod tests {
             &lines(&cut[1..]),
             Some(page)
         ));
-        // A corner cut through a pixel's centre: the pixel (11, 10) is left out.
+        // The first corner dropped: the line from (11, 11) to (14, 10) passes through the
+        // centre (12.5, 10.5) and leaves the pixel (11, 10) out.
         let through: Vec<Point> = corners
             .iter()
             .copied()
