@@ -282,7 +282,8 @@ pub(crate) fn path_draws_right(
     commands: &[PathCommand],
     canvas: Option<Rect>,
 ) -> bool {
-    if commands.is_empty() {
+    let finite = |p: Point| p.x.is_finite() && p.y.is_finite();
+    if commands.is_empty() || !finite(start) {
         return false;
     }
     let (mut lo, mut hi) = (start, start);
@@ -290,11 +291,12 @@ pub(crate) fn path_draws_right(
         let PathCommand::Line(p) = *c else {
             return false;
         };
+        // (Each point: `less` and `greater` would let a later number stand for a NaN.)
+        if !finite(p) {
+            return false;
+        }
         lo = Point::new(less(lo.x, p.x), less(lo.y, p.y));
         hi = Point::new(greater(hi.x, p.x), greater(hi.y, p.y));
-    }
-    if !(lo.x.is_finite() && lo.y.is_finite() && hi.x.is_finite() && hi.y.is_finite()) {
-        return false;
     }
     if let Some(c) = canvas {
         if !(c.x0 <= lo.x - 1.0 && hi.x + 1.0 <= c.x1 && c.y0 <= lo.y - 1.0 && hi.y + 1.0 <= c.y1) {
@@ -520,6 +522,17 @@ mod tests {
             &reference,
             through[0],
             &lines(&through[1..]),
+            None
+        ));
+        // A point that is not a number: left to the fills (which give up on it).
+        let mut lost = lines(&corners[1..]);
+        lost[2] = PathCommand::Line(Point::new(f64::NAN, 11.0));
+        assert!(!path_draws_right(&reference, corners[0], &lost, None));
+        let nan = Point::new(f64::NAN, f64::NAN);
+        assert!(!path_draws_right(
+            &reference,
+            nan,
+            &lines(&corners[1..]),
             None
         ));
         // A curve: only the fills can tell.
