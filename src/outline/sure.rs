@@ -19,6 +19,36 @@ use super::render_check::Reference;
 use crate::curve::PathCommand;
 use kurbo::{Point, Rect};
 
+/// The pixel centres `i + 0.5` that lie in an interval of one axis: indices
+/// `first..=last`, none when `last < first`.
+#[derive(Clone, Copy)]
+struct Centres {
+    first: i64,
+    last: i64,
+}
+
+impl Centres {
+    /// The centres in `[lo, hi]`.
+    fn within(lo: f64, hi: f64) -> Centres {
+        Centres {
+            first: ceil(lo - 0.5),
+            last: floor(hi - 0.5),
+        }
+    }
+
+    fn is_empty(self) -> bool {
+        self.last < self.first
+    }
+
+    fn count(self) -> usize {
+        (self.last - self.first + 1).max(0) as usize
+    }
+
+    fn indices(self) -> std::ops::RangeInclusive<i64> {
+        self.first..=self.last
+    }
+}
+
 /// What [`classify`] knows of a loop without filling it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Known {
@@ -195,11 +225,11 @@ pub(crate) fn classify(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) 
     }
     // Rows of centres y + 0.5 within the margin of the bounds; none, or no such column of
     // centres x + 0.5, and the loop is clear of every centre.
-    let (y0, y1) = (ceil(lo.y - MARGIN - 0.5), floor(hi.y + MARGIN - 0.5));
-    if y1 < y0 || floor(hi.x + MARGIN - 0.5) < ceil(lo.x - MARGIN - 0.5) {
+    let rows = Centres::within(lo.y - MARGIN, hi.y + MARGIN);
+    if rows.is_empty() || Centres::within(lo.x - MARGIN, hi.x + MARGIN).is_empty() {
         return Known::PaintsNothing;
     }
-    let mut work = (y1 - y0 + 1) as usize * edges.len();
+    let mut work = rows.count() * edges.len();
     if work > MOST_WORK {
         return Known::Unknown;
     }
@@ -207,7 +237,7 @@ pub(crate) fn classify(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) 
     // Per row: each near edge's interval; each crossing and its direction.
     let mut near = [(0.0f64, 0.0f64); MOST_EDGES];
     let mut crossings = [(0.0f64, 0i32); MOST_EDGES];
-    for row in y0..=y1 {
+    for row in rows.indices() {
         let y = row as f64 + 0.5;
         let (mut left, mut right) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut n_near, mut n_cross) = (0, 0);
@@ -226,12 +256,12 @@ pub(crate) fn classify(anchor: Point, lp: &[PathCommand], canvas: Option<Rect>) 
         if left > right {
             continue;
         }
-        let (first, last) = (ceil(left - 0.5), floor(right - 0.5));
-        work += (last - first + 1).max(0) as usize * edges.len();
+        let cols = Centres::within(left, right);
+        work += cols.count() * edges.len();
         if work > MOST_WORK {
             return Known::Unknown;
         }
-        for col in first..=last {
+        for col in cols.indices() {
             let x = col as f64 + 0.5;
             // Near an edge, only the fills can tell; clear of them, wound round or not.
             if near[..n_near].iter().any(|&(l, r)| l <= x && x <= r) {
@@ -334,14 +364,15 @@ pub(crate) fn path_draws_right(
             return false;
         }
         // The rows of centres within the margin of the edge: none may pass near a centre.
-        for row in ceil(e.near_y_lo - 0.5)..=floor(e.near_y_hi - 0.5) {
+        for row in Centres::within(e.near_y_lo, e.near_y_hi).indices() {
             let y = row as f64 + 0.5;
             if let Some((l, r)) = e.near(y) {
-                if ceil(l - 0.5) <= floor(r - 0.5) {
+                if !Centres::within(l, r).is_empty() {
                     return false;
                 }
             }
             if e.crosses(y) {
+                // The first centre right of the crossing (none is on it: none is near).
                 cross(row, ceil(e.x_at(y) - 0.5), e.dir);
             }
         }
