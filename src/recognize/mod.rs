@@ -56,6 +56,7 @@ mod conditioning;
 mod exact;
 mod float;
 mod gjk;
+mod gram;
 mod lifted;
 mod margin;
 mod planar;

@@ -18,6 +18,7 @@
 //!    repeat.
 
 use super::bareiss;
+use super::gram::{Grams, GRAM};
 use super::scalar::Scalar;
 use super::support::Tag;
 use num_bigint::BigInt;
@@ -65,45 +66,7 @@ pub(crate) struct Work<T> {
     /// The affine weights `μ`.
     pub mu: Vec<T>,
     /// The `f64` edges' products, kept while the vertices they come from stay.
-    gram: Box<Gram>,
-}
-
-/// Most edges and coordinates [`Gram`] holds: the built-in models' (the cubic's 9 numbers,
-/// 10 vertices), as [`affine_min_norm_f64`].
-const GRAM: usize = 10;
-
-/// The edges `e_i = w_i − w_0` of the first `valid` vertices after `w_0` of a simplex, with
-/// their products `e_i · e_j` and `e_i · w_0`, kept by [`affine_min_norm_f64`] between calls
-/// while `w_0` and those vertices stay (a vertex added later gets its products then; a
-/// vertex removed takes its row and column away; `w_0` removed or the points rebuilt empty
-/// it). The same products of the same numbers, so the same bits: most calls of the minor
-/// cycle follow a vertex added or removed, and recomputing every product was a sixth of
-/// its instructions (digits).
-#[derive(Clone, Debug, Default)]
-struct Gram {
-    valid: usize,
-    n: usize,
-    edges: [[f64; GRAM]; GRAM],
-    g: [[f64; GRAM]; GRAM],
-    w: [f64; GRAM],
-}
-
-impl Gram {
-    /// Vertex `i` of the simplex is removed.
-    fn forget(&mut self, i: usize) {
-        if i == 0 {
-            self.valid = 0;
-        } else if i <= self.valid {
-            let k = i - 1;
-            self.edges.copy_within(k + 1..self.valid, k);
-            self.g.copy_within(k + 1..self.valid, k);
-            for row in &mut self.g[..self.valid - 1] {
-                row.copy_within(k + 1..self.valid, k);
-            }
-            self.w.copy_within(k + 1..self.valid, k);
-            self.valid -= 1;
-        }
-    }
+    gram: Grams,
 }
 
 impl<T> Default for Work<T> {
@@ -113,7 +76,7 @@ impl<T> Default for Work<T> {
             system: Vec::new(),
             t: Vec::new(),
             mu: Vec::new(),
-            gram: Box::default(),
+            gram: Grams::default(),
         }
     }
 }
@@ -178,7 +141,7 @@ impl<T: Scalar> Simplex<T> {
     /// Rebuilds every vertex's point from its tag (the same points in other coordinates),
     /// in its own buffer, keeping the weights.
     pub fn rebuild(&mut self, mut point: impl FnMut(&Tag, &mut Vec<T>)) {
-        self.work.gram.valid = 0;
+        self.work.gram.invalidate();
         for v in self.vertices.iter_mut() {
             point(&v.tag, &mut v.point);
         }
@@ -199,7 +162,7 @@ impl<T: Scalar> Simplex<T> {
 
     /// Removes every vertex.
     pub fn clear(&mut self) {
-        self.work.gram.valid = 0;
+        self.work.gram.invalidate();
         while let Some(v) = self.vertices.pop() {
             self.recycle(v.point);
         }
@@ -407,8 +370,8 @@ pub(crate) fn affine_min_norm_f64(
         (0, _) => affine_min_norm_by_elimination(vertices, eps, work),
         (..=3, ..=3) => on_stack::<3, 4>(vertices, eps, work),
         (..=5, ..=5) => on_stack::<5, 6>(vertices, eps, work),
-        (..=10, ..=10) => on_stack::<10, 11>(vertices, eps, work),
-        _ => affine_min_norm_by_elimination(vertices, eps, work),
+        (..=GRAM, ..=GRAM) => on_stack::<GRAM, { GRAM + 1 }>(vertices, eps, work),
+        _ => on_heap(vertices, eps, work),
     }
 }
 
@@ -424,7 +387,7 @@ fn on_stack<const C: usize, const W: usize>(
     let (n, m) = (w0.len(), vertices.len() - 1);
     debug_assert!(vertices.iter().all(|v| v.point.len() == n));
     // The products of the edges not yet held (see `Gram`), each once.
-    let gram = &mut *work.gram;
+    let gram = &mut *work.gram.fixed;
     if gram.n != n || gram.valid > m {
         gram.valid = 0;
         gram.n = n;
@@ -483,6 +446,44 @@ fn on_stack<const C: usize, const W: usize>(
     let sum_t = t[..m].iter().fold(0.0, |s, x| s + x);
     work.mu.push(1.0 - sum_t);
     work.mu.extend_from_slice(&t[..m]);
+    work.mu.iter().all(|x| x.is_finite())
+}
+
+/// [`affine_min_norm_f64`] beyond the stack's sizes: [`affine_min_norm_by_elimination`] with
+/// the edges' products kept between calls ([`super::gram::HeapGram`]), the same numbers to
+/// the bit.
+fn on_heap(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
+    let heap = &mut work.gram.heap;
+    if !heap.update(vertices, <f64 as Scalar>::dot) {
+        return affine_min_norm_by_elimination(vertices, eps, work);
+    }
+    work.mu.clear();
+    let m = vertices.len() - 1;
+    // The augmented system [EᵀE | −Eᵀw0], m × (m+1), row-major.
+    let system = &mut work.system;
+    system.clear();
+    system.resize(m * (m + 1), 0.0);
+    for (i, row) in system.chunks_exact_mut(m + 1).enumerate() {
+        for (j, e) in row[..m].iter_mut().enumerate() {
+            *e = heap.product(i, j);
+        }
+        row[m] = -heap.with_first(i);
+    }
+    let scale = (0..m).fold(0.0f64, |s, i| {
+        let d = system[i * (m + 1) + i];
+        if d > s {
+            d
+        } else {
+            s
+        }
+    });
+    let pivot_tol = <f64 as Scalar>::tolerance(&scale, eps);
+    if !solve_in_place(system, m, &pivot_tol, &mut work.t) {
+        return false;
+    }
+    let sum_t = work.t.iter().fold(0.0, |s, x| s + x);
+    work.mu.push(1.0 - sum_t);
+    work.mu.extend_from_slice(&work.t);
     work.mu.iter().all(|x| x.is_finite())
 }
 
@@ -677,13 +678,14 @@ mod tests {
             proptest::prop_assert_eq!(got, want);
         }
 
-        /// The minor cycle with the products kept from call to call (see `Gram`) gives the
-        /// weights and vertices of one that recomputes them all, to the bit, through
-        /// vertices added, removed by the cycle, dropped, and rebuilt.
+        /// The minor cycle with the products kept from call to call (see `super::gram`)
+        /// gives the weights and vertices of one that recomputes them all, to the bit,
+        /// through vertices added, removed by the cycle, dropped, and rebuilt: on the stack
+        /// up to 10 coordinates, on the heap beyond.
         #[test]
         fn kept_products_give_the_same_cycles(
-            dim in 2usize..=6,
-            ops in proptest::collection::vec((0u8..6, proptest::collection::vec(-1e3f64..1e3, 6)), 1..40),
+            dim in 2usize..=14,
+            ops in proptest::collection::vec((0u8..6, proptest::collection::vec(-1e3f64..1e3, 14)), 1..40),
         ) {
             let bits = |s: &Simplex<f64>| -> (Vec<u64>, Vec<Tag>) {
                 (s.weights.iter().map(|w| w.to_bits()).collect(), s.tags())
@@ -699,7 +701,7 @@ mod tests {
                     _ => {}
                 }
                 let mut fresh = s.clone();
-                fresh.work.gram.valid = 0;
+                fresh.work.gram.invalidate();
                 let (want, got) = (fresh.closest_point_to_origin(1e-12), s.closest_point_to_origin(1e-12));
                 proptest::prop_assert_eq!(want.is_ok(), got.is_ok());
                 if got.is_err() {
@@ -710,13 +712,14 @@ mod tests {
             }
         }
 
-        /// The stack version gives the general one's weights to the bit (or fails with it),
-        /// in the dimensions it unrolls and others, independent vertices or not, up to one
-        /// more than it holds (which goes to the general one).
+        /// The stack and heap versions give the general one's weights to the bit (or fail
+        /// with it), in the dimensions the stack unrolls and beyond (up to poly:6's 27
+        /// coordinates), independent vertices or not, up to more vertices than the heap's
+        /// buffers hold (which go to the general one).
         #[test]
         fn stack_weights_are_the_general_ones(
-            dim in 1usize..=11,
-            raw in proptest::collection::vec(proptest::collection::vec(-1e6f64..1e6, 11), 1..=12),
+            dim in 1usize..=27,
+            raw in proptest::collection::vec(proptest::collection::vec(-1e6f64..1e6, 27), 1..=30),
             repeat in proptest::prelude::any::<bool>(),
             eps in proptest::sample::select(vec![0.0, 1e-12, 1e-3]),
         ) {
