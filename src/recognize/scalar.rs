@@ -95,7 +95,8 @@ impl Scalar for f64 {
     fn affine_min_norm_into(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
         affine_min_norm_f64(vertices, eps, work)
     }
-    /// The built-in models' lengths (line 2, circle 3, conic 5, cubic 9) unrolled: the
+    /// The built-in models' lengths (line 2, circle 3, conic 5, cubic 9, poly:4 to poly:6
+    /// 14, 20 and 27) unrolled: the
     /// same products summed in the same order (the minor cycle's Gram matrices are made of
     /// these; its loops over a handful of numbers were most of its time).
     #[inline]
@@ -105,6 +106,9 @@ impl Scalar for f64 {
             3 => fixed_dot::<3>(a, b),
             5 => fixed_dot::<5>(a, b),
             9 => fixed_dot::<9>(a, b),
+            14 => fixed_dot::<14>(a, b),
+            20 => fixed_dot::<20>(a, b),
+            27 => fixed_dot::<27>(a, b),
             _ => a.iter().zip(b).fold(0.0, |s, (x, y)| s + x * y),
         }
     }

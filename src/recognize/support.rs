@@ -94,8 +94,9 @@ pub(crate) trait SupportMap<T> {
 /// Index and value of the smallest and of the largest `y·F(p)` over a set (`f64`).
 ///
 /// The liftings of the built-in models (without the constant: line 2, circle 3, conic 5,
-/// cubic 9 numbers) run with the row length known at compile time: the same products summed in the same order, but
-/// unrolled (this loop is the support function, the recognizer's innermost work).
+/// cubic 9, poly:4 to poly:6 14, 20 and 27 numbers) run with the row length known at
+/// compile time: the same products summed in the same order, but unrolled (this loop is the
+/// support function, the recognizer's innermost work).
 #[inline]
 fn float_extremes(set: &LiftedSet, y: &[f64]) -> Option<((usize, f64), (usize, f64))> {
     match if set.dim() == y.len() { y.len() } else { 0 } {
@@ -103,6 +104,9 @@ fn float_extremes(set: &LiftedSet, y: &[f64]) -> Option<((usize, f64), (usize, f
         3 => fixed_extremes::<3>(set, y),
         5 => fixed_extremes::<5>(set, y),
         9 => fixed_extremes::<9>(set, y),
+        14 => fixed_extremes::<14>(set, y),
+        20 => fixed_extremes::<20>(set, y),
+        27 => fixed_extremes::<27>(set, y),
         _ => extremes_by(set.float_rows(), |row: &[f64]| {
             row.iter().zip(y).map(|(a, b)| a * b).sum()
         }),
@@ -137,6 +141,9 @@ fn float_extreme<const MAX: bool>(set: &LiftedSet, y: &[f64]) -> Option<(usize, 
         3 => fixed_extreme::<3, MAX>(set, y),
         5 => fixed_extreme::<5, MAX>(set, y),
         9 => fixed_extreme::<9, MAX>(set, y),
+        14 => fixed_extreme::<14, MAX>(set, y),
+        20 => fixed_extreme::<20, MAX>(set, y),
+        27 => fixed_extreme::<27, MAX>(set, y),
         _ => float_extremes(set, y).map(|(min, max)| if MAX { max } else { min }),
     }
 }
