@@ -225,18 +225,23 @@ impl Polynomial {
         }
         let (xp, yp) = Self::powers((p - self.origin).to_point());
         let (mut v, mut gx, mut gy) = (self.local[0], 0.0, 0.0);
+        // Each degree's terms `c x^a y^b` in order of `b`, their products left to right; the
+        // ends `x^k` and `y^k` apart, without the factors `y^0 = x^0 = 1` (multiplying by
+        // one changes no bit) or the branches on `a > 0` and `b > 0` (degree 6 on noise: this
+        // evaluation was 30% of the time).
         for k in 1..=self.top {
-            for b in 0..=k {
-                let a = k - b;
-                let c = self.local[k * (k + 1) / 2 + b];
+            let row = &self.local[k * (k + 1) / 2..=k * (k + 1) / 2 + k];
+            let (first, last) = (row[0], row[k]);
+            v += first * xp[k];
+            gx += first * k as f64 * xp[k - 1];
+            for b in 1..k {
+                let (a, c) = (k - b, row[b]);
                 v += c * xp[a] * yp[b];
-                if a > 0 {
-                    gx += c * a as f64 * xp[a - 1] * yp[b];
-                }
-                if b > 0 {
-                    gy += c * b as f64 * xp[a] * yp[b - 1];
-                }
+                gx += c * a as f64 * xp[a - 1] * yp[b];
+                gy += c * b as f64 * xp[a] * yp[b - 1];
             }
+            v += last * yp[k];
+            gy += last * k as f64 * yp[k - 1];
         }
         (v, Vec2::new(gx, gy))
     }
@@ -326,6 +331,16 @@ mod tests {
                 let g1 = poly.gradient(p);
                 assert_close(g.x, g1.x, 1e-15 * scale, "value_and_gradient: ∂x");
                 assert_close(g.y, g1.y, 1e-15 * scale, "value_and_gradient: ∂y");
+                // Above degree 2 (below it, a formula of its own), to the bit: the same
+                // products in the same order (the value's sum starts from the constant term
+                // instead of 0 + it, which differs for −0).
+                if poly.top > 2 {
+                    prop_assert_eq!(g.x.to_bits(), g1.x.to_bits());
+                    prop_assert_eq!(g.y.to_bits(), g1.y.to_bits());
+                    if poly.local[0] != 0.0 {
+                        prop_assert_eq!(v.to_bits(), got.to_bits());
+                    }
+                }
                 // The absolute expansion, evaluated term by term in absolute coordinates.
                 let absolute: f64 = poly
                     .terms()
