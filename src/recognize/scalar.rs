@@ -95,10 +95,10 @@ impl Scalar for f64 {
     fn affine_min_norm_into(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
         affine_min_norm_f64(vertices, eps, work)
     }
-    /// The built-in models' lengths (line 2, circle 3, conic 5, cubic 9, poly:4 to poly:6
-    /// 14, 20 and 27) unrolled: the
-    /// same products summed in the same order (the minor cycle's Gram matrices are made of
-    /// these; its loops over a handful of numbers were most of its time).
+    /// The built-in models' lengths (line 2, circle 3, conic 5, cubic 9; poly:4 to poly:6
+    /// 14, 20 and 27) unrolled: the same products summed in the same order (the minor
+    /// cycle's Gram matrices are made of these; its loops over a handful of numbers were
+    /// most of its time).
     #[inline]
     fn dot(a: &[f64], b: &[f64]) -> f64 {
         match a.len().min(b.len()) {

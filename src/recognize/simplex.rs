@@ -334,6 +334,13 @@ pub(crate) fn affine_min_norm_by_elimination<T: Scalar>(
         }
         work.system[i * (m + 1) + m] = -dot(edge(i), w0);
     }
+    weights_of_system(work, m, eps)
+}
+
+/// The weights `μ` into `work.mu` from the augmented system `[EᵀE | −Eᵀw₀]` of `m` edges in
+/// `work.system`: eliminated with pivots relative to the largest diagonal entry, then
+/// `μ_0 = 1 − Σ t_i`, `μ_i = t_i`; false when a pivot is too small or a weight not finite.
+fn weights_of_system<T: Scalar>(work: &mut Work<T>, m: usize, eps: f64) -> bool {
     let scale = (0..m).fold(T::zero(), |s, i| {
         let d = &work.system[i * (m + 1) + i];
         if *d > s {
@@ -469,22 +476,7 @@ fn on_heap(vertices: &[Vertex<f64>], eps: f64, work: &mut Work<f64>) -> bool {
         }
         row[m] = -heap.with_first(i);
     }
-    let scale = (0..m).fold(0.0f64, |s, i| {
-        let d = system[i * (m + 1) + i];
-        if d > s {
-            d
-        } else {
-            s
-        }
-    });
-    let pivot_tol = <f64 as Scalar>::tolerance(&scale, eps);
-    if !solve_in_place(system, m, &pivot_tol, &mut work.t) {
-        return false;
-    }
-    let sum_t = work.t.iter().fold(0.0, |s, x| s + x);
-    work.mu.push(1.0 - sum_t);
-    work.mu.extend_from_slice(&work.t);
-    work.mu.iter().all(|x| x.is_finite())
+    weights_of_system(work, m, eps)
 }
 
 /// The weights of [`affine_min_norm_by_elimination`] in exact arithmetic, without a single
