@@ -56,9 +56,7 @@ pub(super) struct HeapGram {
     valid: usize,
     /// The coordinates of the points.
     n: usize,
-    /// Most edges the buffers hold (`n + 1`, a full simplex's vertices).
-    most: usize,
-    /// The edges, `most` rows of `n`.
+    /// The edges, [`HeapGram::most`] rows of `n`.
     edges: Vec<f64>,
     /// `e_i · e_j`, `most × most`, row-major.
     g: Vec<f64>,
@@ -67,12 +65,17 @@ pub(super) struct HeapGram {
 }
 
 impl HeapGram {
+    /// Most edges the buffers hold: `n + 1`, a full simplex's vertices.
+    fn most(&self) -> usize {
+        self.n + 1
+    }
+
     /// Vertex `i` of the simplex is removed.
     fn forget(&mut self, i: usize) {
         if i == 0 {
             self.valid = 0;
         } else if i <= self.valid {
-            let (k, v, n, s) = (i - 1, self.valid, self.n, self.most);
+            let (k, v, n, s) = (i - 1, self.valid, self.n, self.most());
             self.edges.copy_within((k + 1) * n..v * n, k * n);
             self.g.copy_within((k + 1) * s..v * s, k * s);
             for r in 0..v - 1 {
@@ -85,7 +88,8 @@ impl HeapGram {
 
     /// Brings the products up to the `m = vertices.len() − 1` edges of `vertices` (the first
     /// `valid` are kept, the others computed with `dot`); false (and nothing kept) when the
-    /// simplex has more edges than its points have coordinates plus one.
+    /// simplex has more edges than its points have coordinates plus one, or points of
+    /// different lengths.
     pub(super) fn update(
         &mut self,
         vertices: &[super::simplex::Vertex<f64>],
@@ -96,25 +100,26 @@ impl HeapGram {
         };
         let (w0, m) = (&first.point[..], vertices.len() - 1);
         let n = w0.len();
-        if n != self.n {
+        // (Sized on first use, and afresh for points of another length.)
+        if n != self.n || self.w.is_empty() {
             self.n = n;
-            self.most = n + 1;
+            let most = self.most();
             self.edges.clear();
-            self.edges.resize(self.most * n, 0.0);
+            self.edges.resize(most * n, 0.0);
             self.g.clear();
-            self.g.resize(self.most * self.most, 0.0);
+            self.g.resize(most * most, 0.0);
             self.w.clear();
-            self.w.resize(self.most, 0.0);
+            self.w.resize(most, 0.0);
             self.valid = 0;
         }
-        if m > self.most {
+        let s = self.most();
+        if m > s {
             self.valid = 0;
             return false;
         }
         if self.valid > m {
             self.valid = 0;
         }
-        let s = self.most;
         for j in self.valid..m {
             let point = &vertices[j + 1].point;
             if point.len() != n {
@@ -138,7 +143,7 @@ impl HeapGram {
 
     /// `e_i · e_j` (after [`HeapGram::update`]).
     pub(super) fn product(&self, i: usize, j: usize) -> f64 {
-        self.g[i * self.most + j]
+        self.g[i * self.most() + j]
     }
 
     /// `e_i · w_0` (after [`HeapGram::update`]).

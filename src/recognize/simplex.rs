@@ -362,8 +362,8 @@ fn weights_of_system<T: Scalar>(work: &mut Work<T>, m: usize, eps: f64) -> bool 
 /// [`affine_min_norm_by_elimination`] in `f64` on the stack, for the built-in models'
 /// dimensions (at most 9, the cubic's, with one vertex more): the same operations in the
 /// same order (the same [`Scalar::dot`], the same pivots), so the same weights to the bit;
-/// its `Vec` indexing was most of the minor cycle's time. Larger simplices go to the general
-/// one.
+/// its `Vec` indexing was most of the minor cycle's time. Larger simplices go to `on_heap`,
+/// the general one with its products kept.
 pub(crate) fn affine_min_norm_f64(
     vertices: &[Vertex<f64>],
     eps: f64,
