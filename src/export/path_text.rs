@@ -6,21 +6,86 @@ use crate::outline::ContourPath;
 use kurbo::Point;
 use std::fmt::Write as _;
 
-/// Appends the decimal digits of `n`, zero-padded to `width` digits (without the
-/// formatting machinery: a large SVG writes millions of numbers).
-fn push_digits(mut n: u64, width: usize, s: &mut String) {
-    let mut buf = [0u8; 20];
-    let mut k = buf.len();
-    while n > 0 || buf.len() - k < width {
+/// `10^p` for the fast path of [`number`] (`powi` is a library call).
+const POWERS_OF_TEN: [f64; 10] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9];
+
+/// A number's decimal digits: `-`(if `negative`) `int`.`frac` (`frac` written with
+/// `frac_digits` digits, zero-padded on the left; no fraction when it is zero).
+struct Decimal {
+    negative: bool,
+    int: u64,
+    frac: u64,
+    frac_digits: usize,
+}
+
+impl Decimal {
+    /// `v` rounded to `precision` decimals, trailing zeros stripped, no `-0`: `v·10^p`
+    /// rounded to an integer that `f64` holds exactly (the same digits as `format!` except,
+    /// rarely, for a value within an ulp of a rounding tie). Returns None if `v` is not
+    /// finite, `precision` is above 9 or `|v|·10^p` is 9·10^15 or more.
+    fn of(v: f64, precision: usize) -> Option<Decimal> {
+        let &scale = POWERS_OF_TEN.get(precision)?;
+        let n = (v * scale).round_ties_even();
+        if !n.is_finite() || n.abs() >= 9.0e15 {
+            return None;
+        }
+        let n = n as i64;
+        let (scale, m) = (scale as u64, n.unsigned_abs());
+        let (int, mut frac) = (m / scale, m % scale);
+        let mut frac_digits = precision;
+        if frac != 0 {
+            while frac % 10 == 0 {
+                frac /= 10;
+                frac_digits -= 1;
+            }
+        }
+        Some(Decimal {
+            negative: n < 0,
+            int,
+            frac,
+            frac_digits,
+        })
+    }
+
+    /// Appends the text, with `lead` (a space, or nothing) before it unless it starts with
+    /// a minus sign; with `bare`, a fraction's leading zero is left out (`.5`, `-.25`).
+    /// Written backwards into a buffer and appended at once (without the formatting
+    /// machinery: a large SVG writes millions of numbers).
+    fn push(&self, lead: bool, bare: bool, s: &mut String) {
+        // 20 digits each way, a point and a sign.
+        let mut buf = [0u8; 44];
+        let mut k = buf.len();
+        if self.frac != 0 {
+            k = digits_before(self.frac, self.frac_digits, &mut buf, k);
+            k -= 1;
+            buf[k] = b'.';
+        }
+        if !(bare && self.frac != 0 && self.int == 0) {
+            k = digits_before(self.int, 1, &mut buf, k);
+        }
+        if self.negative {
+            k -= 1;
+            buf[k] = b'-';
+        } else if lead {
+            k -= 1;
+            buf[k] = b' ';
+        }
+        // ASCII digits, point, sign and space: always UTF-8.
+        s.push_str(std::str::from_utf8(&buf[k..]).unwrap_or_default());
+    }
+}
+
+/// Writes the decimal digits of `n`, zero-padded to `width` digits, into `buf` just before
+/// `end`; returns where they start.
+fn digits_before(mut n: u64, width: usize, buf: &mut [u8], end: usize) -> usize {
+    let mut k = end;
+    while n > 0 || end - k < width {
         k -= 1;
         buf[k] = b'0' + (n % 10) as u8;
         n /= 10;
     }
-    s.extend(buf[k..].iter().map(|&b| char::from(b)));
+    k
 }
-
-/// `10^p` for the fast path of [`number`] (`powi` is a library call).
-const POWERS_OF_TEN: [f64; 10] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9];
 
 /// Formats `v` with at most `precision` decimals, trailing zeros stripped, no `-0` (also
 /// the number writer of the PDF and EPS exports).
@@ -29,29 +94,9 @@ pub(crate) fn number(v: f64, precision: usize, s: &mut String) {
         s.push('0');
         return;
     }
-    // Fast path: v·10^p rounded to an integer that f64 holds exactly (the same digits as
-    // `format!` except, rarely, for a value within an ulp of a rounding tie).
-    if let Some(&scale) = POWERS_OF_TEN.get(precision) {
-        let n = (v * scale).round_ties_even();
-        if n.abs() < 9.0e15 {
-            let n = n as i64;
-            if n < 0 {
-                s.push('-');
-            }
-            let (scale, n) = (scale as u64, n.unsigned_abs());
-            let (int, mut frac) = (n / scale, n % scale);
-            push_digits(int, 1, s);
-            if frac != 0 {
-                let mut digits = precision;
-                while frac % 10 == 0 {
-                    frac /= 10;
-                    digits -= 1;
-                }
-                s.push('.');
-                push_digits(frac, digits, s);
-            }
-            return;
-        }
+    if let Some(d) = Decimal::of(v, precision) {
+        d.push(false, false, s);
+        return;
     }
     let mut t = format!("{v:.precision$}");
     if t.contains('.') {
@@ -77,6 +122,10 @@ fn point(p: Point, precision: usize, s: &mut String) {
 /// Appends one number, separated from what precedes it by a space unless a command letter
 /// or its own minus sign separates it.
 fn push_number(v: f64, precision: usize, after_number: bool, s: &mut String) {
+    if let Some(d) = Decimal::of(v, precision) {
+        d.push(after_number, true, s);
+        return;
+    }
     let start = s.len();
     number(v, precision, s);
     // No leading zero: `.5`, `-.25` (most relative coordinates are below one pixel).
@@ -243,8 +292,35 @@ mod tests {
                     want = "0".into();
                 }
                 assert_eq!(num(v, p), want, "{v} at precision {p}");
+                // In path data: no leading zero before a point, a space unless a minus
+                // sign separates the number from the one before.
+                for after_number in [false, true] {
+                    let mut compact = want.replacen(
+                        "0.",
+                        ".",
+                        usize::from(want.starts_with("0.") || want.starts_with("-0.")),
+                    );
+                    if after_number && !compact.starts_with('-') {
+                        compact.insert(0, ' ');
+                    }
+                    let mut got = String::new();
+                    push_number(v, p, after_number, &mut got);
+                    assert_eq!(got, compact, "{v} at precision {p}");
+                }
             }
         }
+        let compact = |v: f64, after_number: bool| {
+            let mut s = String::new();
+            push_number(v, 4, after_number, &mut s);
+            s
+        };
+        assert_eq!(compact(0.5, true), " .5");
+        assert_eq!(compact(-0.25, true), "-.25");
+        assert_eq!(compact(-0.0001, true), "-.0001");
+        assert_eq!(compact(-0.00001, true), " 0");
+        assert_eq!(compact(0.0625, false), ".0625");
+        assert_eq!(compact(-12.0, false), "-12");
+        assert_eq!(compact(10.5, true), " 10.5");
         assert_eq!(xml_escape("a\"<b>&'"), "a&quot;&lt;b&gt;&amp;&apos;");
     }
 }
