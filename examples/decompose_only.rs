@@ -41,6 +41,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             Some("-m" | "--model") => model = value()?.to_string_lossy().parse()?,
             Some("--threads") => threads = value()?.to_string_lossy().parse()?,
             Some("-q" | "--quiet") => {}
+            Some(o) if o.starts_with('-') && o != "-" => {
+                return Err(format!("unknown option {o}").into())
+            }
             _ => input = Some(a.into()),
         }
     }

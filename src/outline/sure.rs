@@ -13,7 +13,8 @@
 //! outside it and farther than that from every edge is painted by none. [`classify`] looks
 //! for either, row of centres by row. Likewise a path every centre of which lies farther
 //! than that from every edge paints, in every fill, the centres it winds round: where those
-//! are the pixels of its contour, the path is exact, and else wrong exactly where it winds otherwise ([`path_misplaced`]).
+//! are the pixels of its contour, the path is exact, and else it is wrong exactly where it
+//! winds otherwise than the contour's cracks ([`path_misplaced`]).
 
 use super::render_check::Reference;
 use crate::curve::PathCommand;
